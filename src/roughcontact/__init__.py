@@ -1,0 +1,47 @@
+"""roughcontact: contact of rough elastic surfaces with adhesion.
+
+Implements Pastewka & Robbins, PNAS 111, 3298 (2014): self-affine surfaces, FFT
+Green's-function substrates, surface interactions and contact solvers.
+Conventions and units: see the README (lattice units a0 = 1, E* = 1 unless given).
+"""
+
+from ._validate import ParameterError
+from .analysis import area_fraction, contact_patches, perimeter, perimeter_edges
+from .elastic import Substrate
+from .interactions import HardWall
+from .solvers import ContactResult, polonsky_keer, solve
+from .surfaces import (
+    egg_box,
+    flat,
+    load_heights,
+    power_spectrum,
+    save_heights,
+    self_affine,
+    sinusoid,
+    sphere,
+    statistics,
+)
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "ContactResult",
+    "HardWall",
+    "ParameterError",
+    "Substrate",
+    "area_fraction",
+    "contact_patches",
+    "egg_box",
+    "flat",
+    "load_heights",
+    "perimeter",
+    "perimeter_edges",
+    "polonsky_keer",
+    "power_spectrum",
+    "save_heights",
+    "self_affine",
+    "sinusoid",
+    "solve",
+    "sphere",
+    "statistics",
+]

@@ -1,0 +1,64 @@
+"""Input checks that name the parameter and the accepted range."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+
+class ParameterError(ValueError):
+    """A parameter is outside its accepted range; the message names both."""
+
+
+def positive(name: str, value, *, allow_inf: bool = False) -> float:
+    """Return ``float(value)`` if it is finite and > 0, else raise :class:`ParameterError`."""
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise ParameterError(f"{name} must be a positive number, got {value!r}") from None
+    if not (v > 0) or (math.isinf(v) and not allow_inf) or math.isnan(v):
+        raise ParameterError(f"{name} must be > 0 and finite, got {value!r}")
+    return v
+
+
+def in_range(name: str, value, lo: float, hi: float) -> float:
+    """Return ``float(value)`` if ``lo <= value <= hi``, else raise :class:`ParameterError`."""
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise ParameterError(f"{name} must be a number in [{lo}, {hi}], got {value!r}") from None
+    if not (lo <= v <= hi):
+        raise ParameterError(f"{name} must be in [{lo}, {hi}], got {value!r}")
+    return v
+
+
+def shape2d(name: str, shape) -> tuple[int, int]:
+    """Normalise an int or a pair of ints to a 2D grid shape (each >= 2)."""
+    if isinstance(shape, (int, np.integer)):
+        shape = (int(shape), int(shape))
+    try:
+        nx, ny = (int(s) for s in shape)
+    except (TypeError, ValueError):
+        raise ParameterError(f"{name} must be an int or a pair of ints, got {shape!r}") from None
+    if nx < 2 or ny < 2:
+        raise ParameterError(f"{name} must have both sizes >= 2, got {(nx, ny)}")
+    return nx, ny
+
+
+def heights2d(name: str, heights):
+    """Check that a height map is a 2D array of finite reals; return it as float64."""
+    from ._backend import array_namespace, is_numpy_array
+
+    if not hasattr(heights, "shape"):
+        heights = np.asarray(heights, dtype=float)
+    if heights.ndim != 2:
+        raise ParameterError(f"{name} must be a 2D array, got {heights.ndim} dimension(s)")
+    if heights.shape[0] < 2 or heights.shape[1] < 2:
+        raise ParameterError(f"{name} must be at least 2x2, got shape {tuple(heights.shape)}")
+    xp = array_namespace(heights)
+    if is_numpy_array(heights):
+        heights = np.asarray(heights, dtype=float)
+    if not bool(xp.all(xp.isfinite(heights))):
+        raise ParameterError(f"{name} must be finite everywhere (found NaN or inf)")
+    return heights

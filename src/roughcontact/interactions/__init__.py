@@ -1,0 +1,5 @@
+"""Surface interactions: laws that depend only on the local gap."""
+
+from .hardwall import HardWall
+
+__all__ = ["HardWall"]

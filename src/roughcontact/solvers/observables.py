@@ -1,0 +1,60 @@
+"""Assemble a :class:`ContactResult` from solved fields."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..analysis.contact_geometry import perimeter_edges
+from .result import ContactResult
+
+
+def make_result(
+    heights,
+    substrate,
+    pressure,
+    deflection,
+    offset,
+    iterations,
+    residual,
+    converged,
+    message,
+    tol,
+    solver,
+    seconds,
+    repulsive=None,
+    attractive=None,
+):
+    """Build the result record; ``repulsive``/``attractive`` masks default to p > 0 / none."""
+    n = pressure.size
+    gap = offset - heights + deflection
+    if repulsive is None:
+        repulsive = pressure > 0
+    if attractive is None:
+        attractive = np.zeros_like(repulsive)
+    rep_load = float(pressure[repulsive].sum()) / n
+    att_load = -float(pressure[attractive].sum()) / n
+    edges = perimeter_edges(repulsive)
+    a0 = substrate.pixel_size
+    return ContactResult(
+        offset=float(offset),
+        load=float(pressure.sum()) / n,
+        repulsive_load=rep_load,
+        attractive_load=att_load,
+        repulsive_area=float(np.count_nonzero(repulsive)) / n,
+        attractive_area=float(np.count_nonzero(attractive)) / n,
+        perimeter=edges * np.pi / 4 * a0 / substrate.nominal_area,
+        perimeter_edges=edges,
+        mean_gap=float(gap.mean()),
+        iterations=int(iterations),
+        residual=float(residual),
+        converged=bool(converged),
+        message=message,
+        solve_seconds=float(seconds),
+        nominal_area=substrate.nominal_area,
+        pixel_size=a0,
+        tol=float(tol),
+        solver=solver,
+        pressure=pressure,
+        gap=gap,
+        deflection=deflection,
+    )

@@ -1,0 +1,105 @@
+"""The record returned by every solve."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+__all__ = ["ContactResult"]
+
+
+@dataclass(frozen=True)
+class ContactResult:
+    """One solved contact state (SPEC §1 conventions, lattice units unless given).
+
+    Fields
+    ------
+    offset : float
+        Offset ``d`` of the rigid surface (length); gap ``g = d - h + w``.
+    load : float
+        External load per nominal area, :math:`N/A_0 = \\bar p` (pressure, >0 pushes
+        the bodies together).
+    repulsive_load, attractive_load : float
+        :math:`N_{rep}/A_0` and :math:`N_{att}/A_0` (magnitudes; load = rep - att).
+    repulsive_area, attractive_area : float
+        :math:`A_{rep}/A_0`, :math:`A_{att}/A_0` (fractions of the nominal area).
+    perimeter : float
+        Perimeter of the repulsive area per nominal area (1/length): nearest-neighbour
+        edge count × π/4 × a0 / A0.
+    perimeter_edges : int
+        The raw nearest-neighbour edge count.
+    mean_gap : float
+        Mean of the gap over the nominal area (length).
+    pressure, gap, deflection : ndarray
+        Fields on the grid (pressure units, length, length).
+    iterations : int
+        Iterations the solver took.
+    residual : float
+        Final value of the solver's convergence measure (see the solver's docs).
+    converged : bool
+        Whether ``residual <= tol`` was reached within the iteration cap.
+    message : str
+        Why the solver stopped.
+    solve_seconds : float
+        Wall time of the solve (no imports, no set-up of the substrate).
+    nominal_area, pixel_size : float
+        :math:`A_0` (length²) and :math:`a_0` (length).
+    """
+
+    offset: float
+    load: float
+    repulsive_load: float
+    attractive_load: float
+    repulsive_area: float
+    attractive_area: float
+    perimeter: float
+    perimeter_edges: int
+    mean_gap: float
+    iterations: int
+    residual: float
+    converged: bool
+    message: str
+    solve_seconds: float
+    nominal_area: float
+    pixel_size: float
+    tol: float
+    solver: str
+    pressure: np.ndarray = field(repr=False)
+    gap: np.ndarray = field(repr=False)
+    deflection: np.ndarray = field(repr=False)
+
+    @property
+    def total_load(self) -> float:
+        """External load N (pressure × length²)."""
+        return self.load * self.nominal_area
+
+    def summary(self) -> dict:
+        """Scalars only, JSON-ready (the keys of ``roughcontact contact --json``)."""
+        keys = (
+            "offset",
+            "load",
+            "repulsive_load",
+            "attractive_load",
+            "repulsive_area",
+            "attractive_area",
+            "perimeter",
+            "perimeter_edges",
+            "mean_gap",
+            "iterations",
+            "converged",
+            "residual",
+            "message",
+            "solve_seconds",
+            "tol",
+            "solver",
+        )
+        out = {}
+        for k in keys:
+            v = getattr(self, k)
+            out[k] = (
+                v
+                if isinstance(v, (str, bool))
+                else (int(v) if k in ("iterations", "perimeter_edges") else float(v))
+            )
+        return out

@@ -1,0 +1,306 @@
+"""Statistical descriptors of a periodic height map h(x, y).
+
+All averages ``<.>`` are means over the grid points of one period (area A0 = Lx*Ly).
+Lengths are in units of the pixel size a0 unless ``pixel_size`` is given.
+
+Two ways of taking derivatives are offered:
+
+``method="spectral"`` (default)
+    Derivatives of the trigonometric interpolant of the samples, evaluated on the grid.
+    With the unnormalised DFT ``H(q) = sum_x h(x) exp(-i q.x)`` and ``N = nx*ny``
+    (Parseval)::
+
+        h_rms^2   = (1/N^2) sum_{q != 0} |H(q)|^2
+        h'_rms^2  = (1/N^2) sum_q (qx'^2 + qy'^2) |H(q)|^2
+        h''_rms^2 = (1/N^2) sum_q (qx^2 + qy^2)^2 |H(q)|^2
+
+    **Nyquist convention.** For an even number of points along an axis the Nyquist
+    mode ``cos(pi x / a0)`` has a first derivative ``-(pi/a0) sin(pi x / a0)`` that
+    vanishes on every grid point, so its *first* derivative is taken as zero:
+    ``qx' = 0`` on the Nyquist row (and ``qy' = 0`` on the Nyquist column), while the
+    second derivative (Laplacian) uses the full ``q^2 = qx^2 + qy^2``. The spectral
+    values therefore equal the grid means of the spectrally differentiated fields
+    ``grad h`` and ``lap h``. :func:`roughcontact.surfaces.self_affine` normalises
+    with exactly this function, and never populates Nyquist modes, so a requested
+    ``rms_slope`` or ``rms_height`` is reproduced to round-off.
+
+``method="finite-difference"``
+    Periodic central differences ``(h[i+1] - h[i-1]) / (2 a0)`` for the gradient and the
+    5-point Laplacian ``(h[i+1,j] + h[i-1,j] + h[i,j+1] + h[i,j-1] - 4 h[i,j]) / a0^2``.
+    For ``h = A cos(q x)`` these give ``h'_rms = A sin(q a0) / (sqrt(2) a0)`` and
+    ``h''_rms = 4 A sin^2(q a0 / 2) / (sqrt(2) a0^2)``, i.e. the spectral values to
+    ``O((q a0)^2)``.
+
+The power spectrum follows Persson's convention (B. N. J. Persson et al.,
+J. Phys.: Condens. Matter 17, R1 (2005)), see :func:`power_spectrum`.
+
+References
+----------
+L. Pastewka and M. O. Robbins, "Contact between rough surfaces and a criterion for
+macroscopic adhesion", PNAS 111, 3298 (2014), Eqs. 1, 8, 9.
+T. D. B. Jacobs, T. Junge and L. Pastewka, "Quantitative characterization of surface
+topography using spectral analysis", Surf. Topogr.: Metrol. Prop. 5, 013001 (2017).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass
+
+import numpy as np
+
+from .._backend import array_namespace, rfft2, to_numpy
+from .._validate import ParameterError, heights2d, positive
+
+__all__ = [
+    "SurfaceStatistics",
+    "power_spectrum",
+    "rms_curvature",
+    "rms_height",
+    "rms_slope",
+    "statistics",
+]
+
+_METHODS = ("spectral", "finite-difference")
+
+
+@dataclass(frozen=True)
+class SurfaceStatistics:
+    """Summary statistics of a height map (see :func:`statistics`).
+
+    Attributes
+    ----------
+    rms_height : float
+        ``h_rms = <(h - <h>)^2>^(1/2)`` [length].
+    rms_slope : float
+        ``h'_rms = <|grad h|^2>^(1/2)`` (PNAS 2014, Eq. 1) [dimensionless].
+    rms_curvature : float
+        ``h''_rms = <(lap h)^2>^(1/2)`` (PNAS 2014, Eq. 8; ``1/R = h''_rms / 2``)
+        [1/length].
+    predicted_d_rep : float
+        ``d_rep = 4 h'_rms / h''_rms`` (PNAS 2014, Eq. 9) [length]; NaN if
+        ``h''_rms = 0``.
+    predicted_delta_h : float
+        ``delta_h = h'_rms^2 / h''_rms`` (PNAS 2014, Eq. 9) [length]; NaN if
+        ``h''_rms = 0``.
+    method : str
+        ``"spectral"`` or ``"finite-difference"``: how the derivatives were taken.
+    """
+
+    rms_height: float
+    rms_slope: float
+    rms_curvature: float
+    predicted_d_rep: float
+    predicted_delta_h: float
+    method: str
+
+    def to_dict(self) -> dict:
+        """Return the fields as a plain ``dict`` (floats and the method string)."""
+        d = asdict(self)
+        return {k: (v if isinstance(v, str) else float(v)) for k, v in d.items()}
+
+
+def _check_method(method: str) -> str:
+    if method not in _METHODS:
+        raise ParameterError(f"method must be one of {_METHODS}, got {method!r}")
+    return method
+
+
+def _wavevectors(xp, nx: int, ny: int, pixel_size: float, like):
+    """Wavevectors of the rfft2 layout (shape (nx, 1) and (1, ny//2+1)) and Parseval weights.
+
+    Returns ``qx, qy`` (full), ``qx1, qy1`` (first-derivative wavevectors, Nyquist set
+    to zero) and ``weights`` counting each rfft mode for itself and its mirror image.
+    """
+    dev = getattr(like, "device", None)
+    kw = {} if dev is None else {"device": dev}
+    qx = 2 * math.pi * xp.fft.fftfreq(nx, d=pixel_size, **kw)
+    qy = 2 * math.pi * xp.fft.rfftfreq(ny, d=pixel_size, **kw)
+    ix = xp.arange(nx, **kw)
+    iy = xp.arange(ny // 2 + 1, **kw)
+    qx1 = xp.where(ix == nx // 2, 0.0, qx) if nx % 2 == 0 else qx
+    qy1 = xp.where(iy == ny // 2, 0.0, qy) if ny % 2 == 0 else qy
+    # rfft keeps ky >= 0; modes 0 < ky < ny/2 stand for themselves and their mirror.
+    last = ny // 2 if ny % 2 == 0 else -1
+    one = xp.ones_like(qy)
+    wy = xp.where((iy == 0) | (iy == last), one, 2 * one)
+    return (
+        xp.reshape(qx, (nx, 1)),
+        xp.reshape(qy, (1, -1)),
+        xp.reshape(qx1, (nx, 1)),
+        xp.reshape(qy1, (1, -1)),
+        xp.reshape(wy, (1, -1)),
+    )
+
+
+def _spectral_moments(h, pixel_size: float) -> tuple[float, float, float]:
+    """Return ``(<(h-<h>)^2>, <|grad h|^2>, <(lap h)^2>)`` by Parseval on the rfft."""
+    xp = array_namespace(h)
+    nx, ny = h.shape
+    n = nx * ny
+    H = rfft2(h)
+    qx, qy, qx1, qy1, w = _wavevectors(xp, nx, ny, pixel_size, h)
+    p = w * xp.real(H * xp.conj(H)) / float(n) ** 2
+    m0 = float(xp.sum(p)) - float(p[0, 0])
+    m2 = float(xp.sum((qx1**2 + qy1**2) * p))
+    m4 = float(xp.sum((qx**2 + qy**2) ** 2 * p))
+    return max(m0, 0.0), m2, m4
+
+
+def _fd_moments(h, pixel_size: float) -> tuple[float, float, float]:
+    """Same as :func:`_spectral_moments` with periodic central / 5-point differences."""
+    xp = array_namespace(h)
+    a = pixel_size
+    hm = h - xp.mean(h)
+    gx = (xp.roll(h, -1, axis=0) - xp.roll(h, 1, axis=0)) / (2 * a)
+    gy = (xp.roll(h, -1, axis=1) - xp.roll(h, 1, axis=1)) / (2 * a)
+    lap = (
+        xp.roll(h, -1, axis=0)
+        + xp.roll(h, 1, axis=0)
+        + xp.roll(h, -1, axis=1)
+        + xp.roll(h, 1, axis=1)
+        - 4 * h
+    ) / a**2
+    return (
+        float(xp.mean(hm * hm)),
+        float(xp.mean(gx * gx + gy * gy)),
+        float(xp.mean(lap * lap)),
+    )
+
+
+def _moments(heights, pixel_size, method):
+    h = heights2d("heights", heights)
+    a = positive("pixel_size", pixel_size)
+    _check_method(method)
+    if method == "spectral":
+        return _spectral_moments(h, a)
+    return _fd_moments(h, a)
+
+
+def statistics(heights, *, pixel_size: float = 1.0, method: str = "spectral") -> SurfaceStatistics:
+    r"""Root-mean-square height, slope and curvature of a periodic height map.
+
+    Parameters
+    ----------
+    heights : (nx, ny) array
+        Heights h [length] on a periodic grid, ``x = i*pixel_size``, ``y = j*pixel_size``.
+        NumPy or any array-API array (e.g. CuPy).
+    pixel_size : float, optional
+        Grid spacing a0 [length], > 0. Default 1.
+    method : {"spectral", "finite-difference"}, optional
+        How derivatives are taken (see the module docstring, including the Nyquist
+        convention of the spectral method).
+
+    Returns
+    -------
+    SurfaceStatistics
+        ``h_rms = <(h-<h>)^2>^(1/2)``, ``h'_rms = <|grad h|^2>^(1/2)`` (Eq. 1),
+        ``h''_rms = <(lap h)^2>^(1/2)`` (Eq. 8), ``d_rep = 4 h'_rms/h''_rms`` and
+        ``delta_h = h'_rms^2/h''_rms`` (Eq. 9).
+
+    References
+    ----------
+    Pastewka & Robbins, PNAS 111, 3298 (2014), Eqs. 1, 8, 9.
+    """
+    m0, m2, m4 = _moments(heights, pixel_size, method)
+    hrms, sl, cu = math.sqrt(m0), math.sqrt(m2), math.sqrt(m4)
+    if cu > 0:
+        d_rep, dh = 4 * sl / cu, sl**2 / cu
+    else:
+        d_rep = dh = math.nan
+    return SurfaceStatistics(
+        rms_height=hrms,
+        rms_slope=sl,
+        rms_curvature=cu,
+        predicted_d_rep=d_rep,
+        predicted_delta_h=dh,
+        method=method,
+    )
+
+
+def rms_height(heights, *, pixel_size: float = 1.0) -> float:
+    """``h_rms = <(h - <h>)^2>^(1/2)`` [length] (grid mean; independent of the method)."""
+    return math.sqrt(_moments(heights, pixel_size, "spectral")[0])
+
+
+def rms_slope(heights, *, pixel_size: float = 1.0, method: str = "spectral") -> float:
+    """``h'_rms = <|grad h|^2>^(1/2)`` (PNAS 2014, Eq. 1); see :func:`statistics`."""
+    return math.sqrt(_moments(heights, pixel_size, method)[1])
+
+
+def rms_curvature(heights, *, pixel_size: float = 1.0, method: str = "spectral") -> float:
+    """``h''_rms = <(lap h)^2>^(1/2)`` [1/length] (PNAS 2014, Eq. 8); see :func:`statistics`."""
+    return math.sqrt(_moments(heights, pixel_size, method)[2])
+
+
+def power_spectrum(
+    heights,
+    *,
+    pixel_size: float = 1.0,
+    nbins: int | None = None,
+    return_counts: bool = False,
+):
+    r"""Radially averaged (isotropic) power spectral density C(q).
+
+    Convention (Persson et al., J. Phys.: Condens. Matter 17, R1 (2005)):
+    ``C(q) = (2 pi)^-2 \int d^2x <h(x) h(0)> exp(-i q.x)``, so that
+    ``h_rms^2 = \int d^2q C(q)``. On the periodic grid the integral is a sum over the
+    discrete wavevectors with cell ``dqx*dqy = (2 pi/Lx)(2 pi/Ly)``, and per mode::
+
+        C(q) = a0^4 |H(q)|^2 / ((2 pi)^2 A0),   H(q) = sum_x h(x) exp(-i q.x),
+
+    with ``A0 = Lx*Ly``. The ``q = 0`` mode is excluded. Modes are grouped into
+    ``nbins`` equal-width annuli of ``|q|`` from 0 to the largest ``|q|`` on the grid
+    (corners included), and C is averaged within each non-empty annulus. Parseval holds
+    exactly::
+
+        h_rms^2 = sum_bins C_bin * count_bin * (2 pi/Lx) * (2 pi/Ly).
+
+    Parameters
+    ----------
+    heights : (nx, ny) array
+        Heights [length] on a periodic grid.
+    pixel_size : float, optional
+        Grid spacing a0 [length], > 0.
+    nbins : int, optional
+        Number of annuli (>= 1). Default ``min(nx, ny) // 2``.
+    return_counts : bool, optional
+        Also return the number of modes in each bin.
+
+    Returns
+    -------
+    q : ndarray
+        Mean ``|q|`` of the modes in each non-empty bin [1/length].
+    C : ndarray
+        Averaged PSD [length^4].
+    counts : ndarray of int, only if ``return_counts``
+        Modes per bin.
+    """
+    h = heights2d("heights", heights)
+    a = positive("pixel_size", pixel_size)
+    h = np.asarray(to_numpy(h), dtype=float)
+    nx, ny = h.shape
+    if nbins is None:
+        nbins = max(1, min(nx, ny) // 2)
+    if isinstance(nbins, bool) or not isinstance(nbins, (int, np.integer)) or nbins < 1:
+        raise ParameterError(f"nbins must be an integer >= 1, got {nbins!r}")
+    Lx, Ly = nx * a, ny * a
+    import scipy.fft
+
+    H = scipy.fft.fft2(h)
+    C = a**4 * np.abs(H) ** 2 / ((2 * np.pi) ** 2 * Lx * Ly)
+    qx = 2 * np.pi * np.fft.fftfreq(nx, d=a)
+    qy = 2 * np.pi * np.fft.fftfreq(ny, d=a)
+    q = np.hypot(qx[:, None], qy[None, :])
+    q, C = q.ravel()[1:], C.ravel()[1:]  # drop q = 0 (index 0 in fft layout)
+    edges = np.linspace(0.0, q.max(), int(nbins) + 1)
+    idx = np.clip(np.searchsorted(edges, q, side="right") - 1, 0, int(nbins) - 1)
+    counts = np.bincount(idx, minlength=int(nbins))
+    qsum = np.bincount(idx, weights=q, minlength=int(nbins))
+    csum = np.bincount(idx, weights=C, minlength=int(nbins))
+    keep = counts > 0
+    qb = qsum[keep] / counts[keep]
+    Cb = csum[keep] / counts[keep]
+    if return_counts:
+        return qb, Cb, counts[keep]
+    return qb, Cb

@@ -1,0 +1,139 @@
+"""The command line: JSON contracts, exit codes, readable errors."""
+
+import json
+
+import numpy as np
+import pytest
+from click.testing import CliRunner
+
+from roughcontact.cli.main import main
+
+CONTACT_KEYS = {
+    "offset",
+    "load",
+    "repulsive_load",
+    "attractive_load",
+    "repulsive_area",
+    "attractive_area",
+    "perimeter",
+    "mean_gap",
+    "iterations",
+    "converged",
+    "residual",
+    "solve_seconds",
+}
+
+
+@pytest.fixture()
+def surface_file(tmp_path):
+    out = tmp_path / "s.npy"
+    r = CliRunner().invoke(
+        main,
+        [
+            "surface",
+            str(out),
+            "--size",
+            "64",
+            "--hurst",
+            "0.8",
+            "--rms-slope",
+            "0.1",
+            "--short-cutoff",
+            "4",
+            "--seed",
+            "1",
+            "--json",
+        ],
+    )
+    assert r.exit_code == 0, r.output
+    stats = json.loads(r.output)
+    assert stats["rms_slope"] == pytest.approx(0.1)
+    assert {"rms_height", "rms_slope", "rms_curvature"} <= stats.keys()
+    assert np.load(out).shape == (64, 64)
+    return out
+
+
+def test_contact_json(surface_file):
+    r = CliRunner().invoke(main, ["contact", str(surface_file), "--load", "2e-3", "--json"])
+    assert r.exit_code == 0, r.output
+    out = json.loads(r.output)
+    assert CONTACT_KEYS <= out.keys()
+    assert out["converged"] is True and out["load"] == pytest.approx(2e-3)
+    assert 0 < out["repulsive_area"] < 1
+
+
+def test_contact_offset_and_layer(surface_file):
+    h = np.load(surface_file)
+    r = CliRunner().invoke(
+        main,
+        [
+            "contact",
+            str(surface_file),
+            "--offset",
+            str(h.max() - 0.2),
+            "--thickness",
+            "64",
+            "--poisson",
+            "0.3",
+            "--modulus",
+            "2",
+            "--json",
+        ],
+    )
+    assert r.exit_code == 0, r.output
+    assert json.loads(r.output)["load"] > 0
+
+
+def test_not_converged_exits_nonzero(surface_file):
+    r = CliRunner().invoke(
+        main, ["contact", str(surface_file), "--load", "2e-3", "--max-iter", "2", "--json"]
+    )
+    assert r.exit_code == 3
+    assert json.loads(r.stdout)["converged"] is False
+
+
+@pytest.mark.parametrize(
+    "args,match",
+    [
+        (["--load", "-1"], "load"),
+        (["--load", "1e-3", "--modulus", "0"], "contact_modulus"),
+        (["--load", "1e-3", "--thickness", "10", "--poisson", "0.7"], "poisson"),
+        ([], "exactly one"),
+    ],
+)
+def test_bad_input_is_one_readable_line(surface_file, args, match):
+    r = CliRunner().invoke(main, ["contact", str(surface_file), *args])
+    assert r.exit_code == 2
+    assert match in r.output
+    assert "Traceback" not in r.output
+
+
+def test_unreadable_file(tmp_path):
+    r = CliRunner().invoke(main, ["contact", str(tmp_path / "missing.npy"), "--load", "1e-3"])
+    assert r.exit_code == 2 and "missing.npy" in r.output
+
+
+def test_surface_bad_hurst(tmp_path):
+    r = CliRunner().invoke(
+        main,
+        [
+            "surface",
+            str(tmp_path / "s.npy"),
+            "--size",
+            "32",
+            "--hurst",
+            "1.5",
+            "--rms-slope",
+            "0.1",
+            "--short-cutoff",
+            "4",
+        ],
+    )
+    assert r.exit_code == 2 and "hurst" in r.output
+
+
+def test_demo_small_json():
+    r = CliRunner().invoke(main, ["demo", "--size", "128", "--json"])
+    assert r.exit_code == 0, r.output
+    out = json.loads(r.stdout)
+    assert out["all_converged"] and len(out["path"]) == 8

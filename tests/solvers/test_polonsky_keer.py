@@ -1,0 +1,168 @@
+"""Hard-wall solver against Westergaard, Hertz and exact identities."""
+
+import numpy as np
+import pytest
+
+import roughcontact as rc
+from roughcontact.theory import (
+    hertz,
+    westergaard_contact_fraction,
+    westergaard_full_contact_pressure,
+    westergaard_pressure,
+)
+
+
+def wavy(n=512, amplitude=0.5):
+    wavelength = float(n)
+    h = rc.sinusoid((n, 2), wavelength, amplitude)
+    return h, rc.Substrate((n, 2)), wavelength, amplitude
+
+
+@pytest.mark.parametrize("fraction_of_pstar", [0.05, 0.2, 0.5, 0.8])
+def test_westergaard_area_and_pressure(fraction_of_pstar):
+    h, sub, lam, amp = wavy()
+    pstar = westergaard_full_contact_pressure(amp, lam, 1.0)
+    pbar = fraction_of_pstar * pstar
+    res = rc.solve(h, sub, rc.HardWall(), load=pbar, tol=1e-10)
+    assert res.converged
+    frac = westergaard_contact_fraction(pbar, amp, lam, 1.0)
+    n = h.shape[0]
+    assert abs(res.repulsive_area - frac) * n <= 2.0  # within a pixel at each edge
+    x = np.arange(n, dtype=float)
+    p_theory = westergaard_pressure(x, pbar, amp, lam, 1.0)
+    p = res.pressure[:, 0]
+    err = np.linalg.norm(p - p_theory) / np.linalg.norm(p_theory)
+    assert err < 0.03
+    assert res.load == pytest.approx(pbar, rel=1e-12)
+
+
+def test_westergaard_full_contact():
+    h, sub, lam, amp = wavy(256)
+    pstar = westergaard_full_contact_pressure(amp, lam, 1.0)
+    res = rc.solve(h, sub, load=1.2 * pstar, tol=1e-10)
+    assert res.repulsive_area == 1.0
+    x = np.arange(h.shape[0], dtype=float)
+    np.testing.assert_allclose(
+        res.pressure[:, 0], 1.2 * pstar + pstar * np.cos(2 * np.pi * x / lam), atol=1e-8 * pstar
+    )
+
+
+def test_hertz_sphere_in_large_periodic_cell():
+    n, radius = 256, 250.0
+    h = rc.sphere((n, n), radius)
+    sub = rc.Substrate((n, n), contact_modulus=2.0)
+    loads = [40.0, 80.0, 160.0]  # total loads N
+    indent_excess = []
+    for total in loads:
+        res = rc.solve(h, sub, load=total / sub.nominal_area, tol=1e-10)
+        hz = hertz(load=total, radius=radius, contact_modulus=2.0)
+        assert res.converged
+        # contact radius from the area and central pressure
+        a = np.sqrt(res.repulsive_area * sub.nominal_area / np.pi)
+        assert a == pytest.approx(hz.contact_radius, rel=0.03)
+        assert res.pressure.max() == pytest.approx(hz.central_pressure, rel=0.03)
+        # indentation: summit h = 0 at zero gap, so the centre deflection is -offset
+        indent_excess.append((-res.offset - hz.indentation) / total)
+    # periodic images and the zero mean deflection add a term linear in N
+    assert np.ptp(indent_excess) < 0.03 * abs(np.mean(indent_excess))
+
+
+@pytest.fixture(scope="module")
+def rough():
+    h = rc.self_affine((128, 128), hurst=0.8, rms_slope=0.1, short_cutoff=8, seed=3)
+    return h, rc.Substrate((128, 128))
+
+
+def test_signorini_conditions_and_load(rough):
+    h, sub = rough
+    res = rc.solve(h, sub, load=1e-3, tol=1e-9)
+    assert res.converged and res.residual <= 1e-9
+    assert res.pressure.min() >= 0
+    hrms = h.std()
+    assert res.gap.min() >= -2e-9 * hrms
+    assert np.abs(res.gap[res.pressure > 0]).max() <= 2e-9 * hrms
+    assert res.load == pytest.approx(1e-3, rel=1e-12)
+    assert res.repulsive_load == pytest.approx(1e-3, rel=1e-12)
+    assert res.attractive_area == 0 and res.attractive_load == 0
+    np.testing.assert_allclose(res.deflection, sub.deflection(res.pressure), atol=1e-12)
+    assert res.perimeter_edges == rc.perimeter_edges(res.pressure > 0)
+
+
+def test_displacement_control_matches_load_control(rough):
+    h, sub = rough
+    by_load = rc.solve(h, sub, load=2e-3, tol=1e-10)
+    by_offset = rc.solve(h, sub, offset=by_load.offset, tol=1e-10)
+    assert by_offset.converged
+    assert by_offset.load == pytest.approx(2e-3, rel=1e-6)
+    assert by_offset.repulsive_area == pytest.approx(by_load.repulsive_area, abs=2 / h.size)
+
+
+def test_warm_start_saves_iterations(rough):
+    h, sub = rough
+    first = rc.solve(h, sub, load=1e-3)
+    again = rc.solve(h, sub, load=1e-3, initial=first)
+    assert again.converged and again.iterations < first.iterations
+    np.testing.assert_allclose(again.pressure, first.pressure, atol=1e-6 * first.pressure.max())
+
+
+def test_finite_layer_mean_pressure_is_uniform_mode_times_mean_deflection(rough):
+    h, _ = rough
+    sub = rc.Substrate(h.shape, thickness=64.0, poisson=0.3)
+    res = rc.solve(h, sub, offset=h.max() - 0.5, tol=1e-10)
+    assert res.converged
+    k0 = rc.elastic.uniaxial_layer_stiffness(64.0, 1.0, 0.3)
+    assert res.load == pytest.approx(k0 * res.deflection.mean(), rel=1e-8)
+
+
+def test_nonadhesive_kappa_rep_near_two():
+    # Pastewka & Robbins 2014, Eq. 2: kappa_rep close to 2 (literature 1.8-2.6)
+    n = 256
+    h = rc.self_affine((n, n), hurst=0.8, rms_slope=0.1, short_cutoff=8, seed=11)
+    sub = rc.Substrate((n, n))
+    areas, loads, prev = [], [], None
+    for load in np.geomspace(2e-4, 1e-3, 4):
+        prev = rc.solve(h, sub, load=load, initial=prev)
+        areas.append(prev.repulsive_area)
+        loads.append(prev.load)
+    load_1 = rc.analysis.interpolate_at_area(areas, loads, 0.01)
+    assert 1.8 <= rc.analysis.kappa(0.01, load_1, 0.1) <= 2.6
+
+
+def test_no_contact_and_zero_load(rough):
+    h, sub = rough
+    res = rc.solve(h, sub, offset=h.max() + 1.0)
+    assert res.converged and res.load == 0 and res.repulsive_area == 0
+    res = rc.solve(h, sub, load=0.0)
+    assert res.converged and res.repulsive_area == 0 and res.offset == pytest.approx(h.max())
+
+
+def test_iteration_cap_is_reported(rough):
+    h, sub = rough
+    res = rc.solve(h, sub, load=1e-3, max_iter=3)
+    assert not res.converged and res.iterations == 3
+    assert "cap" in res.message and res.residual > res.tol
+
+
+def test_callback_sees_every_iteration_and_can_stop(rough):
+    h, sub = rough
+    seen = []
+    res = rc.solve(h, sub, load=1e-3, callback=lambda it, r: seen.append((it, r)) or it >= 5)
+    assert [s[0] for s in seen] == [1, 2, 3, 4, 5]
+    assert not res.converged and "callback" in res.message
+
+
+@pytest.mark.parametrize(
+    "heights,kwargs,match",
+    [
+        (np.full((8, 8), np.nan), {"load": 1e-3}, "heights"),
+        (np.zeros(8), {"load": 1e-3}, "heights"),
+        (np.zeros((8, 8)), {"load": -1e-3}, "load"),
+        (np.zeros((8, 8)), {"load": 1e-3, "offset": 0.0}, "exactly one"),
+        (np.zeros((8, 8)), {}, "exactly one"),
+        (np.zeros((8, 9)), {"load": 1e-3}, "shape"),
+        (np.zeros((8, 8)), {"load": 1e-3, "tol": 0.0}, "tol"),
+    ],
+)
+def test_bad_input(heights, kwargs, match):
+    with pytest.raises(rc.ParameterError, match=match):
+        rc.solve(heights, rc.Substrate((8, 8)), **kwargs)
