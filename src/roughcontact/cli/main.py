@@ -4,6 +4,7 @@ mean pressures N/A0 in units of the contact modulus."""
 from __future__ import annotations
 
 import json
+import math
 import sys
 
 import click
@@ -29,6 +30,122 @@ class _Group(click.Group):
             _fail(str(err))
         except OSError as err:
             _fail(str(err))
+
+
+def _interaction_options(f):
+    opts = [
+        click.option(
+            "--interaction",
+            type=click.Choice(INTERACTIONS),
+            default="hardwall",
+            show_default=True,
+            help="Surface interaction law.",
+        ),
+        click.option(
+            "--work-of-adhesion",
+            "work",
+            type=float,
+            default=None,
+            help="w (energy per area, units of E* x length).",
+        ),
+        click.option(
+            "--range",
+            "range_",
+            type=float,
+            default=None,
+            help="Δr (lj93smooth), ρ (exponential), cohesive width (dugdale).",
+        ),
+        click.option(
+            "--stiffness",
+            type=float,
+            default=None,
+            help="lj93smooth site stiffness per area k = V''(a0) (default E*/(2 a0)).",
+        ),
+    ]
+    for o in reversed(opts):
+        f = o(f)
+    return f
+
+
+INTERACTIONS = ["hardwall", "lj93smooth", "lj93", "exponential", "dugdale"]
+
+
+def _make_interaction(name, work, range_, stiffness, modulus, pixel_size):
+    from .. import interactions as it
+
+    if name == "hardwall":
+        return it.HardWall()
+    if name == "lj93smooth":
+        return it.SmoothLJ93(
+            contact_modulus=modulus,
+            pixel_size=pixel_size,
+            stiffness=stiffness,
+            range=range_,
+            work_of_adhesion=work,
+        )
+    if work is None:
+        raise ParameterError(f"--interaction {name} needs --work-of-adhesion")
+    if name == "lj93":
+        return it.LennardJones93(work_of_adhesion=work, equilibrium_distance=pixel_size)
+    if range_ is None:
+        raise ParameterError(f"--interaction {name} needs --range")
+    if name == "exponential":
+        return it.Exponential(work_of_adhesion=work, range=range_)
+    return it.MaugisDugdale(work_of_adhesion=work, range=range_)
+
+
+def _substrate(shape, modulus, pixel_size, thickness, poisson, base):
+    from ..elastic import Substrate
+
+    return Substrate(
+        shape,
+        contact_modulus=modulus,
+        pixel_size=pixel_size,
+        thickness=thickness,
+        poisson=poisson,
+        base=base,
+    )
+
+
+def _substrate_options(f):
+    opts = [
+        click.option(
+            "--modulus",
+            type=float,
+            default=1.0,
+            show_default=True,
+            help="Contact modulus E* = E/(1-ν²).",
+        ),
+        click.option(
+            "--pixel-size", type=float, default=1.0, show_default=True, help="a0 (length)."
+        ),
+        click.option(
+            "--thickness", type=float, default=None, help="Layer thickness (default: half-space)."
+        ),
+        click.option(
+            "--poisson",
+            type=float,
+            default=0.5,
+            show_default=True,
+            help="ν in [0, 0.5] (layers only).",
+        ),
+        click.option(
+            "--base",
+            type=click.Choice(["bonded", "frictionless"]),
+            default="bonded",
+            show_default=True,
+            help="Layer attachment to its rigid base.",
+        ),
+        click.option(
+            "--tol", type=float, default=1e-8, show_default=True, help="Solver tolerance."
+        ),
+        click.option(
+            "--max-iter", type=int, default=5000, show_default=True, help="Iteration cap per state."
+        ),
+    ]
+    for o in reversed(opts):
+        f = o(f)
+    return f
 
 
 @click.group(cls=_Group, context_settings={"help_option_names": ["-h", "--help"]})
@@ -95,30 +212,8 @@ def surface(
 @click.argument("surface_file", metavar="SURFACE", type=click.Path(dir_okay=False))
 @click.option("--load", type=float, default=None, help="Mean pressure N/A0 (units of E*).")
 @click.option("--offset", type=float, default=None, help="Offset d of the rigid surface.")
-@click.option(
-    "--modulus", type=float, default=1.0, show_default=True, help="Contact modulus E* = E/(1-ν²)."
-)
-@click.option("--pixel-size", type=float, default=1.0, show_default=True, help="a0 (length).")
-@click.option(
-    "--thickness", type=float, default=None, help="Layer thickness (default: half-space)."
-)
-@click.option("--poisson", type=float, default=0.5, show_default=True, help="ν in [0, 0.5].")
-@click.option(
-    "--base",
-    type=click.Choice(["bonded", "frictionless"]),
-    default="bonded",
-    show_default=True,
-    help="Layer attachment to its rigid base.",
-)
-@click.option(
-    "--interaction",
-    type=click.Choice(["hardwall"]),
-    default="hardwall",
-    show_default=True,
-    help="Surface interaction.",
-)
-@click.option("--tol", type=float, default=1e-8, show_default=True, help="Solver tolerance.")
-@click.option("--max-iter", type=int, default=5000, show_default=True, help="Iteration cap.")
+@_substrate_options
+@_interaction_options
 @click.option(
     "--save-fields",
     type=click.Path(dir_okay=False),
@@ -135,9 +230,12 @@ def contact(
     thickness,
     poisson,
     base,
-    interaction,
     tol,
     max_iter,
+    interaction,
+    work,
+    range_,
+    stiffness,
     save_fields,
     as_json,
 ):
@@ -145,25 +243,15 @@ def contact(
 
     Exit code 3 if the solver did not converge, 2 on bad input.
     """
-    from ..elastic import Substrate
-    from ..interactions import HardWall
     from ..solvers import solve
     from ..surfaces import load_heights
 
     if (load is None) == (offset is None):
         raise ParameterError("give exactly one of --load or --offset")
-    if thickness is None and poisson != 0.5:
-        pass  # ν only matters for a layer; accepted for scripts that always pass it
     h = load_heights(surface_file)
-    sub = Substrate(
-        h.shape,
-        contact_modulus=modulus,
-        pixel_size=pixel_size,
-        thickness=thickness,
-        poisson=poisson,
-        base=base,
-    )
-    res = solve(h, sub, HardWall(), load=load, offset=offset, tol=tol, max_iter=max_iter)
+    sub = _substrate(h.shape, modulus, pixel_size, thickness, poisson, base)
+    law = _make_interaction(interaction, work, range_, stiffness, modulus, pixel_size)
+    res = solve(h, sub, law, load=load, offset=offset, tol=tol, max_iter=max_iter)
     if save_fields:
         import numpy as np
 
@@ -181,6 +269,123 @@ def contact(
             f"solver did not converge: {res.message} (residual {res.residual:.3g} > tol {tol})",
             EXIT_NOT_CONVERGED,
         )
+
+
+@main.command()
+@click.argument("surface_file", metavar="SURFACE", type=click.Path(dir_okay=False))
+@click.option(
+    "--offsets",
+    nargs=3,
+    type=float,
+    default=None,
+    metavar="START STOP STEP",
+    help="Approach offsets START, START-|STEP|, ... down to STOP (inclusive).",
+)
+@click.option(
+    "--loads",
+    nargs=3,
+    type=float,
+    default=None,
+    metavar="START STOP STEP",
+    help="Load control: mean pressures from START to STOP by STEP.",
+)
+@click.option(
+    "--retract/--no-retract",
+    default=False,
+    show_default=True,
+    help="Retract through the same offsets after the approach.",
+)
+@_substrate_options
+@_interaction_options
+@click.option(
+    "-o",
+    "--output",
+    type=click.Path(dir_okay=False),
+    required=True,
+    help="NetCDF file for the path.",
+)
+@click.option("--fields-at", type=int, multiple=True, help="Steps whose fields are stored.")
+@click.option("--json", "as_json", is_flag=True, help="Print a JSON summary.")
+def path(
+    surface_file,
+    offsets,
+    loads,
+    retract,
+    modulus,
+    pixel_size,
+    thickness,
+    poisson,
+    base,
+    tol,
+    max_iter,
+    interaction,
+    work,
+    range_,
+    stiffness,
+    output,
+    fields_at,
+    as_json,
+):
+    """Follow a quasi-static approach (and retraction) path; write it to a NetCDF file.
+
+    Exit code 3 if any state did not converge, 2 on bad input.
+    """
+    import numpy as np
+
+    from ..solvers import PathError, approach_retract
+    from ..surfaces import load_heights
+
+    if (offsets is None) == (loads is None):
+        raise ParameterError("give exactly one of --offsets or --loads")
+    start, stop, step = offsets if offsets is not None else loads
+    if step == 0:
+        raise ParameterError("STEP must be non-zero")
+    count = int(math.floor(abs(stop - start) / abs(step) + 1e-9)) + 1
+    values = start + np.sign(stop - start or 1) * abs(step) * np.arange(count)
+    h = load_heights(surface_file)
+    sub = _substrate(h.shape, modulus, pixel_size, thickness, poisson, base)
+    law = _make_interaction(interaction, work, range_, stiffness, modulus, pixel_size)
+    show = None
+    if not as_json:
+
+        def show(i, n, res):
+            click.echo(
+                f"  step {i}/{n}: d = {res.offset:.4f}  N/A0 = {res.load:.4e}  "
+                f"A_rep/A0 = {res.repulsive_area:.4f}  ({res.iterations} it)",
+                err=True,
+            )
+
+    kwargs = {"offsets": values} if offsets is not None else {"loads": values}
+    try:
+        ds = approach_retract(
+            h,
+            sub,
+            law,
+            retract=retract,
+            tol=tol,
+            max_iter=max_iter,
+            fields_at=fields_at,
+            progress=show,
+            **kwargs,
+        )
+    except PathError as err:
+        err.partial.to_netcdf(output, engine="h5netcdf")
+        _fail(f"{err} (the {err.partial.sizes['step']} steps before it are in {output})", 1)
+    ds.attrs["surface_file"] = str(surface_file)
+    ds.to_netcdf(output, engine="h5netcdf")
+    summary = {
+        "pull_off": float(ds.attrs["pull_off"]) if retract else None,
+        "steps": int(ds.sizes["step"]),
+        "all_converged": bool(ds.attrs["all_converged"]),
+        "solve_seconds": float(ds["solve_seconds"].sum()),
+        "jumps": [int(i) for i in np.flatnonzero(ds["jump"].values)],
+        "output": str(output),
+    }
+    click.echo(
+        json.dumps(summary) if as_json else "\n".join(f"{k:>14}: {v}" for k, v in summary.items())
+    )
+    if not summary["all_converged"]:
+        _fail("some states did not converge (see the 'converged' variable)", EXIT_NOT_CONVERGED)
 
 
 @main.command()

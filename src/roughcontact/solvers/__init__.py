@@ -1,7 +1,16 @@
 """Contact solvers and the result record."""
 
+from .path import PathError, approach_retract
 from .polonsky_keer import polonsky_keer
 from .result import ContactResult
+from .smooth import minimize_energy
 from .solve import solve
 
-__all__ = ["ContactResult", "polonsky_keer", "solve"]
+__all__ = [
+    "ContactResult",
+    "PathError",
+    "approach_retract",
+    "minimize_energy",
+    "polonsky_keer",
+    "solve",
+]

@@ -5,6 +5,7 @@ from __future__ import annotations
 from .._validate import ParameterError
 from ..interactions.hardwall import HardWall
 from .polonsky_keer import polonsky_keer
+from .smooth import minimize_energy
 
 __all__ = ["solve"]
 
@@ -30,8 +31,10 @@ def solve(
         of ``h`` are the summits touching first.
     substrate : Substrate
         Elastic substrate (shape must match ``heights``).
-    interaction : HardWall, optional
-        The surface interaction (default: :class:`HardWall`).
+    interaction : HardWall or a smooth law (e.g. SmoothLJ93), optional
+        The surface interaction (default: :class:`HardWall`). The hard wall is solved by
+        constrained conjugate gradients, smooth laws by Green's-function-preconditioned
+        energy minimisation.
     load : float, optional
         Load control: mean pressure :math:`\\bar p = N/A_0` (same units as the contact
         modulus; > 0 pushes the bodies together).
@@ -63,4 +66,25 @@ def solve(
             max_iter=max_iter,
             callback=callback,
         )
-    raise ParameterError(f"interaction {interaction!r} is not supported by solve() yet")
+    if getattr(interaction, "hard_core", True):
+        raise ParameterError(
+            f"interaction {getattr(interaction, 'name', interaction)!r} needs a bound-constrained "
+            "adhesive solver, which is not available yet; use lj93smooth or lj93"
+        )
+    if (load is None) == (offset is None):
+        raise ParameterError("give exactly one of load (mean pressure) or offset")
+    if load is not None:
+        raise ParameterError(
+            "load control for adhesive interactions is not available yet; use offset= "
+            "(displacement control, stable through jumps)"
+        )
+    return minimize_energy(
+        heights,
+        substrate,
+        interaction,
+        offset=offset,
+        initial=initial,
+        tol=tol,
+        max_iter=max_iter,
+        callback=callback,
+    )

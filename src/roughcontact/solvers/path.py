@@ -1,0 +1,160 @@
+"""Quasi-static approach/retraction paths, each state warm-started from the last."""
+
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+
+from .._validate import ParameterError
+from .solve import solve
+
+__all__ = ["PathError", "approach_retract"]
+
+_SCALARS = (
+    "offset",
+    "load",
+    "repulsive_load",
+    "attractive_load",
+    "repulsive_area",
+    "attractive_area",
+    "perimeter",
+    "perimeter_edges",
+    "mean_gap",
+    "iterations",
+    "residual",
+    "converged",
+    "solve_seconds",
+)
+
+
+class PathError(RuntimeError):
+    """A step failed irrecoverably; ``partial`` holds the dataset of the steps before it."""
+
+    def __init__(self, message, partial):
+        super().__init__(message)
+        self.partial = partial
+
+
+def approach_retract(
+    heights,
+    substrate,
+    interaction=None,
+    *,
+    offsets=None,
+    loads=None,
+    retract=True,
+    tol=1e-8,
+    max_iter=5000,
+    fields_at=(),
+    jump_factor=2.0,
+    progress=None,
+):
+    """Follow a quasi-static path and return it as an ``xarray.Dataset``.
+
+    Parameters
+    ----------
+    heights, substrate, interaction
+        As for :func:`roughcontact.solve`.
+    offsets : sequence of float
+        Offsets ``d`` (length) of the approach, in order (decreasing ``d`` approaches).
+    loads : sequence of float
+        Load control instead: mean pressures N/A0 (pressure units), in order.
+    retract : bool
+        After the approach, go back through the same values in reverse.
+    fields_at : sequence of int
+        Steps whose pressure, gap and deflection fields are kept (``field_step`` dim).
+    jump_factor : float
+        A step is flagged as an instability (jump into or out of contact) when the
+        largest change of the deflection exceeds ``jump_factor`` times the change of
+        the offset: on a stable branch the contact sites follow the rigid surface
+        (|Δw| ≈ |Δd|) while a jump moves parts of the substrate by the interaction range
+        or more.
+    progress : callable, optional
+        ``progress(step, n_steps, result)`` after every step (e.g. a progress bar).
+
+    Returns
+    -------
+    xarray.Dataset
+        Indexed by ``step``: offset, load, repulsive/attractive load and area, mean gap,
+        perimeter, iterations, residual, converged, solve_seconds, branch
+        ("approach"/"retract"), jump; attrs ``pull_off`` (per A0, >= 0: magnitude of the
+        most negative load on retraction), ``all_converged``. Loads and areas per A0.
+
+    Raises
+    ------
+    PathError
+        When a step ends in a non-finite state; its ``partial`` has every step before.
+    """
+    if (offsets is None) == (loads is None):
+        raise ParameterError("give exactly one of offsets or loads")
+    control = "offset" if offsets is not None else "load"
+    values = np.atleast_1d(np.asarray(offsets if offsets is not None else loads, dtype=float))
+    if values.size == 0:
+        raise ParameterError(f"{control}s must contain at least one value (the path is empty)")
+    if not np.all(np.isfinite(values)):
+        raise ParameterError(f"{control}s must be finite")
+    branch = ["approach"] * values.size
+    if retract and values.size > 1:
+        values = np.concatenate((values, values[-2::-1]))
+        branch += ["retract"] * (values.size - len(branch))
+    fields_at = {int(i) % values.size for i in fields_at}
+
+    rows, fields, previous, t0 = [], {}, None, time.perf_counter()
+    for step, value in enumerate(values):
+        kwargs = {control: float(value)}
+        res = solve(
+            heights, substrate, interaction, initial=previous, tol=tol, max_iter=max_iter, **kwargs
+        )
+        if "non-finite" in res.message or not math.isfinite(res.load):
+            raise PathError(
+                f"step {step} ({control} = {value:g}): {res.message}",
+                _dataset(rows, branch, fields, control, t0, interaction, substrate),
+            )
+        row = {k: getattr(res, k) for k in _SCALARS}
+        if previous is None:
+            row["jump"] = False
+        else:
+            dw = float(np.abs(res.deflection - previous.deflection).max())
+            dd = abs(res.offset - previous.offset)
+            row["jump"] = bool(dw > jump_factor * dd + 1e-12 * (1 + dd))
+        rows.append(row)
+        if step in fields_at:
+            fields[step] = (res.pressure, res.gap, res.deflection)
+        previous = res
+        if progress is not None:
+            progress(step + 1, values.size, res)
+    return _dataset(rows, branch, fields, control, t0, interaction, substrate)
+
+
+def _dataset(rows, branch, fields, control, t0, interaction, substrate):
+    import xarray as xr
+
+    n = len(rows)
+    data = (
+        {k: ("step", np.array([r[k] for r in rows])) for k in (*_SCALARS, "jump")}
+        if n
+        else {k: ("step", np.zeros(0)) for k in (*_SCALARS, "jump")}
+    )
+    data["branch"] = ("step", np.array(branch[:n], dtype=str))
+    ds = xr.Dataset(data, coords={"step": np.arange(n)})
+    if fields:
+        steps = sorted(fields)
+        ds = ds.assign_coords(field_step=steps)
+        for i, name in enumerate(("pressure", "gap", "deflection")):
+            ds[name] = (("field_step", "x", "y"), np.stack([fields[s][i] for s in steps]))
+    retract_loads = [r["load"] for r, b in zip(rows, branch, strict=False) if b == "retract"]
+    pull_off = max(0.0, -min(retract_loads)) if retract_loads else math.nan
+    ds.attrs.update(
+        {
+            "control": control,
+            "pull_off": pull_off,
+            "all_converged": int(all(r["converged"] for r in rows)),
+            "total_seconds": time.perf_counter() - t0,
+            "interaction": repr(interaction),
+            "substrate": repr(substrate),
+            "units": "lattice units unless given: loads and areas per nominal area A0",
+        }
+    )
+    return ds
