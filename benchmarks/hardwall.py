@@ -264,7 +264,7 @@ def run(sizes, repeats, tol, peers, load, seed, fft_workers, log=print) -> list[
 
 HEADER = (
     f"{'code':<17}{'n':>6}{'time[s]':>10}{'iters':>7}{'ms/it':>9}{'fft[ms]':>9}"
-    f"{'it/fft':>8}{'us/peer':>9}{'area':>8}{'L2 vs rc':>10}{'conv':>6}"
+    f"{'it/fft':>8}{'rc/peer':>9}{'area':>8}{'L2 vs rc':>10}{'conv':>6}"
 )
 
 

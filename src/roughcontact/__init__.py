@@ -8,8 +8,8 @@ Conventions and units: see the README (lattice units a0 = 1, E* = 1 unless given
 from ._validate import ParameterError
 from .analysis import area_fraction, contact_patches, perimeter, perimeter_edges
 from .elastic import Substrate
-from .interactions import HardWall
-from .solvers import ContactResult, polonsky_keer, solve
+from .interactions import HardWall, SmoothLJ93
+from .solvers import ContactResult, PathError, approach_retract, polonsky_keer, solve
 from .surfaces import (
     egg_box,
     flat,
@@ -28,7 +28,10 @@ __all__ = [
     "ContactResult",
     "HardWall",
     "ParameterError",
+    "PathError",
+    "SmoothLJ93",
     "Substrate",
+    "approach_retract",
     "area_fraction",
     "contact_patches",
     "egg_box",

@@ -137,3 +137,59 @@ def test_demo_small_json():
     assert r.exit_code == 0, r.output
     out = json.loads(r.stdout)
     assert out["all_converged"] and len(out["path"]) == 8
+
+
+def test_path_lj93smooth_json(surface_file, tmp_path):
+    import xarray as xr
+
+    h = np.load(surface_file)
+    top = float(h.max())
+    out = tmp_path / "path.nc"
+    r = CliRunner().invoke(
+        main,
+        [
+            "path",
+            str(surface_file),
+            "--interaction",
+            "lj93smooth",
+            "--range",
+            "1.0",
+            "--offsets",
+            str(top + 1.8),
+            str(top + 0.8),
+            "0.25",
+            "--retract",
+            "-o",
+            str(out),
+            "--json",
+        ],
+    )
+    assert r.exit_code == 0, r.output
+    summary = json.loads(r.stdout)
+    assert summary["steps"] == 9 and summary["all_converged"]
+    assert summary["pull_off"] >= 0
+    ds = xr.open_dataset(out, engine="h5netcdf")
+    assert summary["pull_off"] == pytest.approx(
+        max(0.0, -float(ds["load"].where(ds["branch"] == "retract").min()))
+    )
+
+
+def test_contact_lj93smooth_inconsistent(surface_file):
+    r = CliRunner().invoke(
+        main,
+        [
+            "contact",
+            str(surface_file),
+            "--interaction",
+            "lj93smooth",
+            "--range",
+            "0.5",
+            "--work-of-adhesion",
+            "1",
+            "--stiffness",
+            "1",
+            "--offset",
+            "3",
+        ],
+    )
+    assert r.exit_code == 2 and "inconsistent" in r.output

@@ -1,5 +1,6 @@
 """Surface interactions: laws that depend only on the local gap."""
 
 from .hardwall import HardWall
+from .lj93smooth import SmoothLJ93
 
-__all__ = ["HardWall"]
+__all__ = ["HardWall", "SmoothLJ93"]

@@ -1,0 +1,192 @@
+r"""The paper's interaction: a 9-3 Lennard-Jones wall smoothly truncated by a quartic.
+
+Pastewka & Robbins, PNAS 111, 3298 (2014), Methods; SPEC §1. With the equilibrium
+distance :math:`a_0`, the stiffness :math:`k = V''(a_0)` and the range :math:`\Delta r`,
+and :math:`x = (g - a_0)/\Delta r`:
+
+.. math::
+    V(g) = \begin{cases}
+      V_{LJ}(g) - V_{LJ}(a_0) - w & g < a_0 \\
+      -w (1 - x)^3 (1 + 3x)          & a_0 \le g < a_0 + \Delta r \\
+      0                              & g \ge a_0 + \Delta r
+    \end{cases}
+
+with :math:`V_{LJ} = \epsilon[(2/15)(\sigma/g)^9 - (\sigma/g)^3]`,
+:math:`\sigma = a_0 (5/2)^{1/6}` (so that :math:`V_{LJ}'(a_0) = 0`) and :math:`\epsilon`
+such that :math:`V_{LJ}''(a_0) = k`. Continuity of V, V', V'' forces
+:math:`w = k \Delta r^2 / 12`. Everything is per unit area: V in pressure × length, the
+pressure :math:`p = -V'` (positive = repulsive), k in pressure / length. The paper's
+per-site stiffness :math:`E^* a_0/2` is :math:`k = E^*/(2 a_0)` per area, which gives
+:math:`\ell_a = w/E^* = \Delta r^2/(24 a_0)`.
+
+Below ``g_min = 0.05 a0`` the core is continued as the quadratic with the same V, V',
+V'' at ``g_min`` (finite and strongly repulsive), so a solver that overshoots into
+g <= 0 gets a restoring force instead of an overflow.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .._validate import ParameterError, positive
+
+__all__ = ["SmoothLJ93"]
+
+_S6 = 2.5 ** (1.0 / 6.0)
+
+
+@dataclass(frozen=True, init=False)
+class SmoothLJ93:
+    """Smoothed 9-3 Lennard-Jones wall (see module docstring).
+
+    Parameters
+    ----------
+    contact_modulus : float
+        E* (pressure); sets the default stiffness k = E*/(2 a0).
+    pixel_size : float
+        a0 of the lattice (length); the default equilibrium distance.
+    equilibrium_distance : float, optional
+        Gap of the energy minimum (length); default ``pixel_size``.
+    stiffness, range, work_of_adhesion : float, optional
+        Any two of k (pressure/length), Δr (length), w (pressure × length); the third
+        follows from w = k Δr²/12. With only one of range / work_of_adhesion the
+        stiffness defaults to E*/(2 a0).
+    """
+
+    name: str
+    equilibrium_distance: float
+    stiffness: float
+    range: float
+    work_of_adhesion: float
+    contact_modulus: float
+    epsilon: float
+    sigma: float
+    hard_core: bool = False
+
+    def __init__(
+        self,
+        *,
+        contact_modulus=1.0,
+        pixel_size=1.0,
+        equilibrium_distance=None,
+        stiffness=None,
+        range=None,
+        work_of_adhesion=None,
+    ):  # noqa: A002
+        es = positive("contact_modulus", contact_modulus)
+        a0 = positive(
+            "equilibrium_distance",
+            pixel_size if equilibrium_distance is None else equilibrium_distance,
+        )
+        k = None if stiffness is None else positive("stiffness", stiffness)
+        dr = None if range is None else positive("range", range)
+        w = None if work_of_adhesion is None else positive("work_of_adhesion", work_of_adhesion)
+        given = sum(v is not None for v in (k, dr, w))
+        if given == 0 or (given == 1 and k is not None):
+            raise ParameterError(
+                "SmoothLJ93 needs range or work_of_adhesion (any two of "
+                "stiffness, range, work_of_adhesion; w = k*range**2/12)"
+            )
+        if k is None and (dr is None or w is None):
+            k = es / (2.0 * a0)
+        if dr is None:
+            dr = math.sqrt(12.0 * w / k)
+        elif w is None:
+            w = k * dr * dr / 12.0
+        elif k is None:
+            k = 12.0 * w / (dr * dr)
+        elif not math.isclose(w, k * dr * dr / 12.0, rel_tol=1e-9):
+            raise ParameterError(
+                f"stiffness={k}, range={dr}, work_of_adhesion={w} are inconsistent: "
+                f"continuity of V, V', V'' needs work_of_adhesion = stiffness*range**2/12 "
+                f"= {k * dr * dr / 12.0}"
+            )
+        sigma = a0 * _S6
+        # V_LJ'' (a0) per unit epsilon
+        d2 = (2.0 / 15.0) * 90.0 * sigma**9 / a0**11 - 12.0 * sigma**3 / a0**5
+        set_ = object.__setattr__
+        for key, val in (
+            ("name", "lj93smooth"),
+            ("equilibrium_distance", a0),
+            ("stiffness", k),
+            ("range", dr),
+            ("work_of_adhesion", w),
+            ("contact_modulus", es),
+            ("epsilon", k / d2),
+            ("sigma", sigma),
+            ("hard_core", False),
+        ):
+            set_(self, key, val)
+
+    @classmethod
+    def from_adhesion_length(cls, adhesion_length, *, contact_modulus=1.0, pixel_size=1.0):
+        """The paper's parametrisation: ℓa = w/E* (length), k = E*/(2 a0), Δr = √(24 a0 ℓa)."""
+        la = positive("adhesion_length", adhesion_length)
+        es = positive("contact_modulus", contact_modulus)
+        return cls(contact_modulus=es, pixel_size=pixel_size, work_of_adhesion=la * es)
+
+    @property
+    def cutoff(self) -> float:
+        """Gap beyond which V = 0 exactly (a0 + Δr)."""
+        return self.equilibrium_distance + self.range
+
+    @property
+    def adhesion_length(self) -> float:
+        """ℓa = w/E* (length)."""
+        return self.work_of_adhesion / self.contact_modulus
+
+    # ---------------------------------------------------------------- evaluation
+    def _lj(self, g):
+        s3 = (self.sigma / g) ** 3
+        s9 = s3**3
+        e = self.epsilon
+        v = e * ((2.0 / 15.0) * s9 - s3)
+        dv = e * (-(18.0 / 15.0) * s9 + 3.0 * s3) / g
+        d2v = e * ((180.0 / 15.0) * s9 - 12.0 * s3) / (g * g)
+        return v, dv, d2v
+
+    def _evaluate(self, gap):
+        g = np.asarray(gap, dtype=float)
+        a0, dr, w = self.equilibrium_distance, self.range, self.work_of_adhesion
+        v = np.zeros_like(g)
+        dv = np.zeros_like(g)
+        d2v = np.zeros_like(g)
+        core = g < a0
+        if core.any():
+            g_min = 0.05 * a0
+            gc = np.maximum(g[core], g_min)
+            vc, dvc, d2vc = self._lj(gc)
+            vc = vc - self._lj(a0)[0] - w
+            below = g[core] - gc  # < 0 only under g_min: C2 quadratic continuation
+            v[core] = vc + dvc * below + 0.5 * d2vc * below**2
+            dv[core] = dvc + d2vc * below
+            d2v[core] = d2vc
+        band = (g >= a0) & (g < a0 + dr)
+        if band.any():
+            x = (g[band] - a0) / dr
+            m = 1.0 - x
+            v[band] = -w * m**3 * (1.0 + 3.0 * x)
+            dv[band] = 12.0 * w * x * m**2 / dr
+            d2v[band] = 12.0 * w * m * (1.0 - 3.0 * x) / dr**2
+        return v, dv, d2v
+
+    def energy(self, gap):
+        """V(g), energy per area (pressure × length)."""
+        return self._evaluate(gap)[0]
+
+    def pressure(self, gap):
+        """p(g) = -V'(g) (pressure; > 0 repulsive)."""
+        return -self._evaluate(gap)[1]
+
+    def curvature(self, gap):
+        """V''(g) (pressure / length)."""
+        return self._evaluate(gap)[2]
+
+    def classify(self, gap):
+        """(repulsive, attractive) masks: g < a0, and a0 < g < a0 + Δr (SPEC §1)."""
+        g = np.asarray(gap)
+        a0 = self.equilibrium_distance
+        return g < a0, (g > a0) & (g < a0 + self.range)

@@ -1,0 +1,93 @@
+"""Smooth-interaction solver: force balance, energy bookkeeping, limits, paths."""
+
+import numpy as np
+import pytest
+
+import roughcontact as rc
+from roughcontact.interactions import SmoothLJ93
+
+
+@pytest.fixture(scope="module")
+def system():
+    h = rc.self_affine((64, 64), hurst=0.8, rms_slope=0.1, short_cutoff=4, seed=5)
+    return h, rc.Substrate((64, 64))
+
+
+def total_energy(res, sub, law):
+    return sub.energy(res.deflection) + sub.pixel_size**2 * float(law.energy(res.gap).sum())
+
+
+def test_force_balance_and_bookkeeping(system):
+    h, sub = system
+    law = SmoothLJ93.from_adhesion_length(0.005)
+    res = rc.solve(h, sub, law, offset=h.max() + 0.8, tol=1e-10)
+    assert res.converged and res.residual <= 1e-10
+    p_int = law.pressure(res.gap)
+    # elastic pressure balances the interaction pressure (up to the rigid mean)
+    np.testing.assert_allclose(sub.pressure(res.deflection), p_int - p_int.mean(), atol=2e-10)
+    rep, att = law.classify(res.gap)
+    assert res.repulsive_area == pytest.approx(rep.mean())
+    assert res.attractive_area == pytest.approx(att.mean())
+    assert res.repulsive_load - res.attractive_load == pytest.approx(res.load, abs=1e-14)
+    assert res.attractive_load > 0 and res.repulsive_load > 0
+
+
+def test_energy_bookkeeping_along_a_branch(system):
+    # dE_total/dd = -N, so the work of the load equals the change of total energy
+    h, sub = system
+    law = SmoothLJ93.from_adhesion_length(0.0005)
+    offsets = h.max() + np.linspace(0.6, 0.4, 21)
+    prev, loads, energies = None, [], []
+    for d in offsets:
+        prev = rc.solve(h, sub, law, offset=d, initial=prev, tol=1e-11)
+        assert prev.converged
+        loads.append(prev.load * sub.nominal_area)
+        energies.append(total_energy(prev, sub, law))
+    work = -np.trapezoid(loads, offsets)
+    assert energies[-1] - energies[0] == pytest.approx(work, rel=2e-3)
+
+
+def test_weak_adhesion_repulsion_tends_to_hard_wall(system):
+    # a stiff, short-ranged wall at distance a0 is the hard wall shifted by a0
+    h, sub = system
+    hard = rc.solve(h, sub, offset=h.max() - 0.3, tol=1e-10)
+    law = SmoothLJ93(stiffness=200.0, range=0.005)  # w = 4e-4: weak
+    soft = rc.solve(h, sub, law, offset=h.max() - 0.3 + 1.0, tol=1e-9)
+    assert soft.converged
+    assert soft.repulsive_load == pytest.approx(hard.load, rel=0.03)
+    assert soft.repulsive_area == pytest.approx(hard.repulsive_area, rel=0.15)
+
+
+def test_warm_start_and_cap(system):
+    h, sub = system
+    law = SmoothLJ93.from_adhesion_length(0.005)
+    first = rc.solve(h, sub, law, offset=h.max() + 0.7)
+    again = rc.solve(h, sub, law, offset=h.max() + 0.7, initial=first)
+    assert again.iterations < first.iterations
+    capped = rc.solve(h, sub, law, offset=h.max() + 0.7, max_iter=2)
+    assert not capped.converged and "cap" in capped.message
+
+
+def test_approach_retract_path_and_pull_off(system, tmp_path):
+    h, sub = system
+    law = SmoothLJ93.from_adhesion_length(0.05)
+    offsets = h.max() + np.linspace(1.6, 0.6, 11)
+    ds = rc.approach_retract(h, sub, law, offsets=offsets, retract=True, fields_at=[0, -1])
+    assert ds.sizes["step"] == 21
+    assert list(ds["branch"].values[:11]) == ["approach"] * 11
+    assert ds.attrs["all_converged"] == 1
+    retract = ds.where(ds["branch"] == "retract", drop=True)
+    assert ds.attrs["pull_off"] == pytest.approx(max(0.0, -float(retract["load"].min())))
+    assert ds.attrs["pull_off"] > 0  # strongly adhesive, smooth at small scales
+    assert ds["pressure"].shape == (2, 64, 64)
+    ds.to_netcdf(tmp_path / "p.nc", engine="h5netcdf")
+
+
+def test_bad_path_input(system):
+    h, sub = system
+    with pytest.raises(rc.ParameterError, match="empty"):
+        rc.approach_retract(h, sub, SmoothLJ93.from_adhesion_length(0.005), offsets=[])
+    with pytest.raises(rc.ParameterError, match="exactly one"):
+        rc.approach_retract(h, sub, offsets=[1.0], loads=[1.0])
+    with pytest.raises(rc.ParameterError, match="load control"):
+        rc.solve(h, sub, SmoothLJ93.from_adhesion_length(0.005), load=1e-3)
