@@ -32,10 +32,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._validate import ParameterError, positive
+from ._lj93 import SIGMA_OVER_A0, curvature_at_minimum, lj93_terms, lj93_with_core
 
 __all__ = ["SmoothLJ93"]
-
-_S6 = 2.5 ** (1.0 / 6.0)
 
 
 @dataclass(frozen=True, init=False)
@@ -104,9 +103,8 @@ class SmoothLJ93:
                 f"continuity of V, V', V'' needs work_of_adhesion = stiffness*range**2/12 "
                 f"= {k * dr * dr / 12.0}"
             )
-        sigma = a0 * _S6
-        # V_LJ'' (a0) per unit epsilon
-        d2 = (2.0 / 15.0) * 90.0 * sigma**9 / a0**11 - 12.0 * sigma**3 / a0**5
+        sigma = a0 * SIGMA_OVER_A0
+        d2 = curvature_at_minimum(sigma, a0)
         set_ = object.__setattr__
         for key, val in (
             ("name", "lj93smooth"),
@@ -139,15 +137,6 @@ class SmoothLJ93:
         return self.work_of_adhesion / self.contact_modulus
 
     # ---------------------------------------------------------------- evaluation
-    def _lj(self, g):
-        s3 = (self.sigma / g) ** 3
-        s9 = s3**3
-        e = self.epsilon
-        v = e * ((2.0 / 15.0) * s9 - s3)
-        dv = e * (-(18.0 / 15.0) * s9 + 3.0 * s3) / g
-        d2v = e * ((180.0 / 15.0) * s9 - 12.0 * s3) / (g * g)
-        return v, dv, d2v
-
     def _evaluate(self, gap):
         g = np.asarray(gap, dtype=float)
         a0, dr, w = self.equilibrium_distance, self.range, self.work_of_adhesion
@@ -156,13 +145,9 @@ class SmoothLJ93:
         d2v = np.zeros_like(g)
         core = g < a0
         if core.any():
-            g_min = 0.05 * a0
-            gc = np.maximum(g[core], g_min)
-            vc, dvc, d2vc = self._lj(gc)
-            vc = vc - self._lj(a0)[0] - w
-            below = g[core] - gc  # < 0 only under g_min: C2 quadratic continuation
-            v[core] = vc + dvc * below + 0.5 * d2vc * below**2
-            dv[core] = dvc + d2vc * below
+            vc, dvc, d2vc = lj93_with_core(g[core], self.epsilon, self.sigma, a0)
+            v[core] = vc - lj93_terms(a0, self.epsilon, self.sigma)[0] - w
+            dv[core] = dvc
             d2v[core] = d2vc
         band = (g >= a0) & (g < a0 + dr)
         if band.any():

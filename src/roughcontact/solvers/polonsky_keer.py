@@ -27,30 +27,14 @@ import time
 
 import numpy as np
 
-from .._backend import irfft2, rfft2
-from .._validate import ParameterError, heights2d
+from .._validate import ParameterError
+from ._ops import check_problem, compliance_operator
+from ._ops import dot as _dot
 from .observables import make_result
 
 __all__ = ["polonsky_keer"]
 # up to this many changed sites, point responses are cheaper than a convolution
 _POINT_CORRECTIONS = 8
-
-
-def _convolver(substrate):
-    _, compliance = substrate._arrays(np.empty(0))
-    shape = substrate.shape
-
-    def conv(x_flat):
-        xq = rfft2(x_flat.reshape(shape))
-        xq *= compliance
-        return irfft2(xq, shape, overwrite_x=True).ravel()
-
-    return conv
-
-
-def _dot(a, b) -> float:
-    # plain ufuncs: BLAS threads cost more than they save on these short vectors
-    return float(np.multiply(a, b).sum())
 
 
 def _subtract_heights(u, hf):
@@ -138,11 +122,7 @@ def polonsky_keer(
     ContactResult
     """
     t_start = time.perf_counter()
-    h = np.ascontiguousarray(heights2d("heights", heights), dtype=float)
-    if tuple(h.shape) != substrate.shape:
-        raise ParameterError(
-            f"heights shape {h.shape} differs from substrate shape {substrate.shape}"
-        )
+    h = check_problem(heights, substrate, tol, offset)
     if (load is None) == (offset is None):
         raise ParameterError("give exactly one of load (mean pressure) or offset")
     if load is not None:
@@ -151,16 +131,12 @@ def polonsky_keer(
             raise ParameterError(f"load must be finite and >= 0 for a hard wall, got {load!r}")
     else:
         offset = float(offset)
-        if not math.isfinite(offset):
-            raise ParameterError(f"offset must be finite, got {offset!r}")
     tol = float(tol)
-    if not tol > 0:
-        raise ParameterError(f"tol must be > 0, got {tol!r}")
 
     hf = h.ravel()
     n = hf.size
     scale = float(np.std(hf)) or substrate.pixel_size
-    conv = _convolver(substrate)
+    conv = compliance_operator(substrate)
     kernel = _PointKernel(substrate, conv)
 
     if load == 0.0 or (offset is not None and substrate.rigid_mean and offset >= hf.max()):

@@ -29,15 +29,12 @@ import time
 
 import numpy as np
 
-from .._validate import ParameterError, heights2d
+from .._validate import ParameterError
+from ._ops import check_problem, compliance_operator, stiffness_operator
+from ._ops import dot as _dot
 from .observables import make_result
-from .polonsky_keer import _convolver
 
 __all__ = ["minimize_energy"]
-
-
-def _dot(a, b) -> float:
-    return float(np.multiply(a, b).sum())
 
 
 def _local_pressure(interaction, gap):
@@ -90,30 +87,14 @@ def minimize_energy(
     ContactResult
     """
     t_start = time.perf_counter()
-    h = np.ascontiguousarray(heights2d("heights", heights), dtype=float)
-    if tuple(h.shape) != substrate.shape:
-        raise ParameterError(
-            f"heights shape {h.shape} differs from substrate shape {substrate.shape}"
-        )
-    offset = float(offset)
-    if not math.isfinite(offset):
-        raise ParameterError(f"offset must be finite, got {offset!r}")
-    tol = float(tol)
-    if not tol > 0:
-        raise ParameterError(f"tol must be > 0, got {tol!r}")
+    h = check_problem(heights, substrate, tol, offset)
+    offset, tol = float(offset), float(tol)
     shape = h.shape
     n = h.size
     es = substrate.contact_modulus
     rigid = substrate.rigid_mean
-    conv = _convolver(substrate)
-    kf, _ = substrate._arrays(np.empty(0))
-
-    def elastic_pressure(w):
-        from .._backend import irfft2, rfft2
-
-        wq = rfft2(w.reshape(shape))
-        wq *= kf
-        return irfft2(wq, shape, overwrite_x=True).ravel()
+    conv = compliance_operator(substrate)
+    elastic_pressure = stiffness_operator(substrate)
 
     base = offset - h.ravel()  # gap = base + w
     if initial is not None:

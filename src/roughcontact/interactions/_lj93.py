@@ -1,0 +1,41 @@
+r"""The 9-3 Lennard-Jones wall shared by :class:`SmoothLJ93` and :class:`LennardJones93`.
+
+:math:`V_{LJ}(g) = \epsilon[(2/15)(\sigma/g)^9 - (\sigma/g)^3]` per unit area, the
+interaction of a half-space of 12-6 LJ atoms with a wall (Steele 1973). Its minimum is at
+:math:`g = a_0 = \sigma (2/5)^{1/6}`, where :math:`V_{LJ}(a_0) = -(2/3)\sqrt{5/2}\,\epsilon`.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["SIGMA_OVER_A0", "lj93_terms", "lj93_with_core"]
+
+SIGMA_OVER_A0 = 2.5 ** (1.0 / 6.0)
+# g_min as a fraction of a0: below it the core is continued as a C2 quadratic, so a solver
+# that overshoots into g <= 0 gets a finite restoring force instead of an overflow
+CORE_FRACTION = 0.05
+
+
+def curvature_at_minimum(sigma: float, a0: float) -> float:
+    """V_LJ''(a0) per unit epsilon (pressure / length per unit ε)."""
+    return (2.0 / 15.0) * 90.0 * sigma**9 / a0**11 - 12.0 * sigma**3 / a0**5
+
+
+def lj93_terms(g, epsilon: float, sigma: float):
+    """V_LJ, V_LJ' and V_LJ'' at gaps ``g > 0`` (energy/area, pressure, pressure/length)."""
+    s3 = (sigma / g) ** 3
+    s9 = s3**3
+    v = epsilon * ((2.0 / 15.0) * s9 - s3)
+    dv = epsilon * (-(18.0 / 15.0) * s9 + 3.0 * s3) / g
+    d2v = epsilon * ((180.0 / 15.0) * s9 - 12.0 * s3) / (g * g)
+    return v, dv, d2v
+
+
+def lj93_with_core(g, epsilon: float, sigma: float, a0: float):
+    """V_LJ and derivatives, continued below ``CORE_FRACTION * a0`` by a C2 quadratic."""
+    g_min = CORE_FRACTION * a0
+    gc = np.maximum(g, g_min)
+    v, dv, d2v = lj93_terms(gc, epsilon, sigma)
+    below = g - gc  # < 0 only under g_min
+    return v + dv * below + 0.5 * d2v * below**2, dv + d2v * below, d2v

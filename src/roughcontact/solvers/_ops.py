@@ -1,0 +1,53 @@
+"""Operators and input checks shared by the solvers (flat float64 arrays on the grid)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .._backend import irfft2, rfft2
+from .._validate import ParameterError, heights2d
+
+__all__ = ["check_problem", "compliance_operator", "dot", "stiffness_operator"]
+
+
+def _fourier_operator(substrate, which: int):
+    multiplier = substrate._arrays(np.empty(0))[which]
+    shape = substrate.shape
+
+    def apply(x_flat):
+        xq = rfft2(x_flat.reshape(shape))
+        xq *= multiplier
+        return irfft2(xq, shape, overwrite_x=True).ravel()
+
+    return apply
+
+
+def compliance_operator(substrate):
+    """p -> G p: deflection (length) of a pressure field; the rigid mean gives zero mean."""
+    return _fourier_operator(substrate, 1)
+
+
+def stiffness_operator(substrate):
+    """w -> K w: elastic pressure of a deflection; with a rigid mean its mean is zero."""
+    return _fourier_operator(substrate, 0)
+
+
+def dot(a, b) -> float:
+    # plain ufuncs: BLAS threads cost more than they save on these short vectors
+    return float(np.multiply(a, b).sum())
+
+
+def check_problem(heights, substrate, tol, offset=None) -> np.ndarray:
+    """Validate the common inputs; return the heights as a contiguous float64 array."""
+    h = np.ascontiguousarray(heights2d("heights", heights), dtype=float)
+    if tuple(h.shape) != substrate.shape:
+        raise ParameterError(
+            f"heights shape {h.shape} differs from substrate shape {substrate.shape}"
+        )
+    if offset is not None and not math.isfinite(float(offset)):
+        raise ParameterError(f"offset must be finite, got {offset!r}")
+    if not float(tol) > 0:
+        raise ParameterError(f"tol must be > 0, got {tol!r}")
+    return h
