@@ -8,7 +8,7 @@ Conventions and units: see the README (lattice units a0 = 1, E* = 1 unless given
 from ._validate import ParameterError
 from .analysis import area_fraction, contact_patches, perimeter, perimeter_edges
 from .elastic import Substrate
-from .interactions import HardWall, SmoothLJ93
+from .interactions import Exponential, HardWall, LennardJones93, MaugisDugdale, SmoothLJ93
 from .solvers import ContactResult, PathError, approach_retract, polonsky_keer, solve
 from .surfaces import (
     egg_box,
@@ -26,7 +26,10 @@ __version__ = "0.1.0"
 
 __all__ = [
     "ContactResult",
+    "Exponential",
     "HardWall",
+    "LennardJones93",
+    "MaugisDugdale",
     "ParameterError",
     "PathError",
     "SmoothLJ93",

@@ -89,5 +89,36 @@ def test_bad_path_input(system):
         rc.approach_retract(h, sub, SmoothLJ93.from_adhesion_length(0.005), offsets=[])
     with pytest.raises(rc.ParameterError, match="exactly one"):
         rc.approach_retract(h, sub, offsets=[1.0], loads=[1.0])
-    with pytest.raises(rc.ParameterError, match="load control"):
-        rc.solve(h, sub, SmoothLJ93.from_adhesion_length(0.005), load=1e-3)
+    with pytest.raises(rc.ParameterError, match="load"):
+        rc.solve(h, sub, SmoothLJ93.from_adhesion_length(0.005), load=float("nan"))
+
+
+def test_load_control_matches_displacement_control(system):
+    h, sub = system
+    law = SmoothLJ93.from_adhesion_length(0.005)
+    res = rc.solve(h, sub, law, load=2e-3, tol=1e-10)
+    assert res.converged and res.load == pytest.approx(2e-3, abs=1e-10)
+    again = rc.solve(h, sub, law, offset=res.offset, initial=res, tol=1e-10)
+    assert again.load == pytest.approx(2e-3, abs=1e-9)
+    assert again.repulsive_area == pytest.approx(res.repulsive_area)
+    # a load-controlled path warm-starts each load from the last
+    ds = rc.approach_retract(h, sub, law, loads=[1e-3, 2e-3, 4e-3], retract=False, tol=1e-9)
+    assert ds.attrs["control"] == "load" and ds.attrs["all_converged"]
+    np.testing.assert_allclose(ds["load"], [1e-3, 2e-3, 4e-3], atol=1e-9)
+
+
+class _BrokenLaw(SmoothLJ93):
+    """Returns NaN forces once the surfaces come closer than a0/2: a broken user law."""
+
+    def pressure(self, gap):
+        p = super().pressure(gap)
+        return np.where(np.asarray(gap) < 0.5, np.nan, p)
+
+
+def test_non_finite_state_stops_the_path_and_names_the_step(system):
+    h, sub = system
+    law = _BrokenLaw(work_of_adhesion=0.005)
+    offsets = h.max() + np.array([1.5, 1.2, 0.9, 0.0])
+    with pytest.raises(rc.PathError, match="step 3") as info:
+        rc.approach_retract(h, sub, law, offsets=offsets)
+    assert info.value.partial.sizes["step"] == 3  # the steps before it are kept

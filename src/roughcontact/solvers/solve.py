@@ -2,8 +2,12 @@
 
 from __future__ import annotations
 
+import math
+
 from .._validate import ParameterError
 from ..interactions.hardwall import HardWall
+from .bounded import minimize_energy_bounded
+from .load_control import solve_at_load
 from .polonsky_keer import polonsky_keer
 from .smooth import minimize_energy
 
@@ -31,10 +35,13 @@ def solve(
         of ``h`` are the summits touching first.
     substrate : Substrate
         Elastic substrate (shape must match ``heights``).
-    interaction : HardWall or a smooth law (e.g. SmoothLJ93), optional
+    interaction : HardWall or an interaction law, optional
         The surface interaction (default: :class:`HardWall`). The hard wall is solved by
-        constrained conjugate gradients, smooth laws by Green's-function-preconditioned
-        energy minimisation.
+        constrained conjugate gradients (Polonsky & Keer), smooth laws (SmoothLJ93,
+        LennardJones93, soft-core Exponential) by Green's-function-preconditioned
+        nonlinear CG, hard-core adhesive laws (Exponential, MaugisDugdale) by
+        bound-constrained projected CG. Load control for adhesive laws locates the
+        offset that carries the load on a stable branch (see ``load_control``).
     load : float, optional
         Load control: mean pressure :math:`\\bar p = N/A_0` (same units as the contact
         modulus; > 0 pushes the bodies together).
@@ -66,25 +73,12 @@ def solve(
             max_iter=max_iter,
             callback=callback,
         )
-    if getattr(interaction, "hard_core", True):
-        raise ParameterError(
-            f"interaction {getattr(interaction, 'name', interaction)!r} needs a bound-constrained "
-            "adhesive solver, which is not available yet; use lj93smooth or lj93"
-        )
     if (load is None) == (offset is None):
         raise ParameterError("give exactly one of load (mean pressure) or offset")
-    if load is not None:
-        raise ParameterError(
-            "load control for adhesive interactions is not available yet; use offset= "
-            "(displacement control, stable through jumps)"
-        )
-    return minimize_energy(
-        heights,
-        substrate,
-        interaction,
-        offset=offset,
-        initial=initial,
-        tol=tol,
-        max_iter=max_iter,
-        callback=callback,
-    )
+    minimize = minimize_energy_bounded if interaction.hard_core else minimize_energy
+    kwargs = {"initial": initial, "tol": tol, "max_iter": max_iter, "callback": callback}
+    if offset is not None:
+        return minimize(heights, substrate, interaction, offset=offset, **kwargs)
+    if not math.isfinite(float(load)):
+        raise ParameterError(f"load must be finite, got {load!r}")
+    return solve_at_load(minimize, heights, substrate, interaction, load=load, **kwargs)

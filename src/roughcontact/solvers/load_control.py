@@ -1,0 +1,115 @@
+r"""Load control for adhesive laws: find the offset whose equilibrium carries the load.
+
+Under load control the offset ``d`` is the unknown conjugate to the load: on a stable
+branch the mean pressure :math:`\bar p(d)` of the displacement-controlled equilibrium
+decreases monotonically with ``d``, so the state with :math:`\bar p = N/A_0` is the root
+of a scalar function. It is bracketed by steps of doubling length from the warm start's
+offset, then located by regula falsi (Illinois variant), each evaluation a
+displacement-controlled solve warm-started from the nearest state already computed. A
+load that no stable state carries (it lies inside a jump of :math:`\bar p(d)`) is
+reported as not converged, with the offsets between which the jump occurs.
+
+Tolerance on the load: ``|p̄ - N/A0| <= tol * E*``, the same scale as the force-balance
+tolerance of the inner solves. Laws whose force is discontinuous (Maugis–Dugdale) make
+:math:`\bar p(d)` jump by :math:`\sigma_0 a_0^2/A_0` whenever a site crosses the end of
+the cohesive zone, so on a grid some loads are carried by no state: they are reported
+as not converged, and displacement control is the way to follow such a law.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import time
+
+import numpy as np
+
+__all__ = ["solve_at_load"]
+
+
+def solve_at_load(
+    minimize, heights, substrate, interaction, *, load, initial, tol, max_iter, callback
+):
+    """Solve for mean pressure ``load`` with a displacement-controlled ``minimize``."""
+    t0 = time.perf_counter()
+    load = float(load)
+    load_tol = tol * substrate.contact_modulus
+    h = np.asarray(heights, dtype=float)
+    scale = max(float(np.std(h)), substrate.pixel_size)
+    states: dict[float, object] = {}
+    total = {"it": 0}
+
+    def evaluate(d):
+        near = min(states, key=lambda x: abs(x - d)) if states else None
+        start = states[near] if near is not None else initial
+        res = minimize(
+            heights, substrate, interaction, offset=d, initial=start, tol=tol,
+            max_iter=max_iter, callback=callback,
+        )  # fmt: skip
+        total["it"] += res.iterations
+        states[d] = res
+        return res
+
+    def finish(res, converged, message):
+        return dataclasses.replace(
+            res,
+            iterations=total["it"],
+            converged=bool(converged and res.converged),
+            message=message if res.converged else res.message,
+            solve_seconds=time.perf_counter() - t0,
+        )
+
+    if initial is not None and hasattr(initial, "offset"):
+        d_a = float(initial.offset)
+    else:
+        d_a = float(h.max()) + getattr(interaction, "equilibrium_distance", 0.0)
+    res_a = evaluate(d_a)
+    f_a = res_a.load - load
+    if not res_a.converged or abs(f_a) <= load_tol:
+        return finish(res_a, abs(f_a) <= load_tol, "converged (load control)")
+    # too much compression (f > 0) -> open up (larger d), else close in
+    direction = 1.0 if f_a > 0 else -1.0
+    step = 0.01 * scale
+    for _ in range(60):
+        d_b = d_a + direction * step
+        res_b = evaluate(d_b)
+        f_b = res_b.load - load
+        if not res_b.converged or abs(f_b) <= load_tol:
+            return finish(res_b, abs(f_b) <= load_tol, "converged (load control)")
+        if (f_b > 0) != (f_a > 0):
+            break
+        if abs(f_b - f_a) <= load_tol and step > scale:
+            # the load no longer changes with d: detached (beyond the pull-off force)
+            return finish(
+                res_b, False, f"no state carries load {load:g}: it stays {res_b.load:g} "
+                f"up to offset {d_b:g} (beyond the pull-off force?)",
+            )  # fmt: skip
+        d_a, f_a, step = d_b, f_b, 2.0 * step
+    else:
+        return finish(res_b, False, f"load {load:g} not bracketed by offsets up to {d_b:g}")
+    side = 0
+    for _ in range(200):
+        d = (d_a * f_b - d_b * f_a) / (f_b - f_a)
+        if not (min(d_a, d_b) < d < max(d_a, d_b)):
+            d = 0.5 * (d_a + d_b)
+        res = evaluate(d)
+        f = res.load - load
+        if not res.converged or abs(f) <= load_tol:
+            return finish(res, abs(f) <= load_tol, "converged (load control)")
+        if (f > 0) == (f_a > 0):
+            d_a, f_a = d, f
+            if side == -1:
+                f_b *= 0.5
+            side = -1
+        else:
+            d_b, f_b = d, f
+            if side == 1:
+                f_a *= 0.5
+            side = 1
+        if abs(d_b - d_a) <= 1e-12 * (abs(d) + scale):
+            break
+    return finish(
+        res,
+        False,
+        f"no stable state carries load {load:g}: the load jumps between offsets "
+        f"{min(d_a, d_b):.12g} and {max(d_a, d_b):.12g} (an instability; use offset control)",
+    )

@@ -1,0 +1,135 @@
+"""Bound-constrained solver for adhesive laws on a hard wall (Exponential, MaugisDugdale).
+
+Oracles: the contact (KKT) conditions, the envelope theorem (the load is -dE/dd of the
+minimised energy), energy bookkeeping along a reversible branch, the non-adhesive hard
+wall as the w -> 0 limit, and the DMT pull-off force 2πwR of a sphere.
+"""
+
+import numpy as np
+import pytest
+
+import roughcontact as rc
+from roughcontact.interactions import Exponential, MaugisDugdale
+from roughcontact.solvers.bounded import project_feasible
+
+N = 96
+R = 80.0
+
+
+@pytest.fixture(scope="module")
+def sphere():
+    return rc.sphere((N, N), R), rc.Substrate((N, N))
+
+
+def total_energy(res, sub, law):
+    return sub.energy(res.deflection) + float(law.energy(res.gap).sum()) * sub.pixel_size**2
+
+
+@pytest.mark.parametrize(
+    "law",
+    [
+        MaugisDugdale(work_of_adhesion=0.01, range=0.5),
+        Exponential(work_of_adhesion=0.01, range=0.3),
+    ],
+    ids=lambda law: law.name,
+)
+def test_contact_conditions(sphere, law):
+    h, sub = sphere
+    res = rc.solve(h, sub, law, offset=-0.6, tol=1e-10)
+    assert res.converged and res.solver == "bounded-cg"
+    g, p = res.gap, res.pressure
+    assert g.min() >= 0 and abs(res.deflection.mean()) < 1e-12
+    touching = g <= 1e-12
+    # the traction is the law's pressure off the wall and balances the elastic pressure
+    elastic = sub.pressure(res.deflection) + res.load
+    np.testing.assert_allclose(p[~touching], law.pressure(g[~touching]), atol=1e-12)
+    np.testing.assert_allclose(elastic, p, atol=5e-10)
+    # on the wall the net traction is at least the adhesive one (reaction >= 0)
+    assert np.all(p[touching] >= law.pressure(g[touching]) - 1e-10)
+    assert res.repulsive_area * N * N == pytest.approx(np.count_nonzero(p > 0))
+    assert res.repulsive_area > 0
+    assert np.all(touching[p > 0])
+    assert res.repulsive_load - res.attractive_load == pytest.approx(res.load, abs=1e-14)
+
+
+def test_load_is_minus_the_offset_derivative_of_the_energy(sphere):
+    # envelope theorem: dE_min/dd = -N (N = total load)
+    h, sub = sphere
+    law = Exponential(work_of_adhesion=0.01, range=0.3)
+    d, step = -0.4, 1e-4
+    base = rc.solve(h, sub, law, offset=d, tol=1e-12)
+    up = rc.solve(h, sub, law, offset=d + step, initial=base, tol=1e-12)
+    down = rc.solve(h, sub, law, offset=d - step, initial=base, tol=1e-12)
+    de_dd = (total_energy(up, sub, law) - total_energy(down, sub, law)) / (2 * step)
+    assert de_dd == pytest.approx(-base.load * sub.nominal_area, rel=1e-4)
+
+
+def test_energy_bookkeeping_along_the_approach(sphere):
+    h, sub = sphere
+    law = Exponential(work_of_adhesion=0.005, range=0.5)
+    offsets = np.linspace(-0.2, -1.0, 41)
+    prev, loads, energies = None, [], []
+    for d in offsets:
+        prev = rc.solve(h, sub, law, offset=d, initial=prev, tol=1e-11)
+        assert prev.converged
+        loads.append(prev.load * sub.nominal_area)
+        energies.append(total_energy(prev, sub, law))
+    work = -np.trapezoid(loads, offsets)
+    assert energies[-1] - energies[0] == pytest.approx(work, rel=2e-3)
+
+
+def test_vanishing_adhesion_is_the_hard_wall(sphere):
+    h, sub = sphere
+    hard = rc.solve(h, sub, offset=-0.8, tol=1e-10)
+    weak = rc.solve(h, sub, Exponential(work_of_adhesion=1e-9, range=0.3), offset=-0.8, tol=1e-12)
+    assert weak.converged
+    assert weak.repulsive_area == pytest.approx(hard.repulsive_area)
+    assert weak.load == pytest.approx(hard.load, rel=1e-5)
+    np.testing.assert_allclose(
+        weak.pressure.clip(0), hard.pressure, atol=1e-6 * hard.pressure.max()
+    )
+
+
+def test_dmt_pull_off_of_a_sphere(sphere):
+    # Maugis parameter lambda = 2 s0 (R/(pi w E*^2))^(1/3) = 0.03: the DMT limit, 2 pi w R
+    h, sub = sphere
+    w = 0.001
+    law = MaugisDugdale(work_of_adhesion=w, range=2.0)
+    ds = rc.approach_retract(h, sub, law, offsets=np.linspace(2.2, -0.8, 31), tol=1e-9)
+    assert ds.attrs["all_converged"]
+    pull_off = ds.attrs["pull_off"] * sub.nominal_area
+    assert pull_off == pytest.approx(2 * np.pi * w * R, rel=0.05)
+
+
+def test_load_control_finds_the_offset_of_the_displacement_controlled_state(sphere):
+    h, sub = sphere
+    law = Exponential(work_of_adhesion=0.005, range=0.5)
+    target = -1.0 / sub.nominal_area  # tensile: adhesion holds the sphere
+    res = rc.solve(h, sub, law, load=target, tol=1e-10)
+    assert res.converged and res.load == pytest.approx(target, abs=1e-10)
+    check = rc.solve(h, sub, law, offset=res.offset, initial=res, tol=1e-10)
+    assert check.load == pytest.approx(target, abs=2e-10)
+
+
+def test_load_beyond_pull_off_is_reported(sphere):
+    h, sub = sphere
+    law = MaugisDugdale(work_of_adhesion=0.001, range=2.0)
+    res = rc.solve(h, sub, law, load=-2.0 / sub.nominal_area, tol=1e-9)  # 2πwR = 0.5
+    assert not res.converged and "carries" in res.message
+
+
+def test_projection_onto_the_feasible_set():
+    rng = np.random.default_rng(0)
+    v, lower = rng.normal(size=500), rng.normal(size=500) - 0.5
+    u = project_feasible(v, lower, zero_mean=True)
+    assert np.all(u >= lower) and abs(u.mean()) < 1e-14
+    # KKT of the projection: u = max(v + lam, lower) with one scalar lam
+    lam = (u - v)[u > lower]
+    assert np.ptp(lam) < 1e-12
+    np.testing.assert_array_equal(project_feasible(v, lower, zero_mean=False), np.maximum(v, lower))
+
+
+def test_rigid_mean_offset_below_mean_height_is_rejected(sphere):
+    h, sub = sphere
+    with pytest.raises(rc.ParameterError, match="offset"):
+        rc.solve(h, sub, MaugisDugdale(work_of_adhesion=0.01, range=0.5), offset=h.mean() - 1)
