@@ -193,3 +193,44 @@ def test_contact_lj93smooth_inconsistent(surface_file):
         ],
     )
     assert r.exit_code == 2 and "inconsistent" in r.output
+
+
+@pytest.mark.parametrize(
+    "law",
+    [
+        ["lj93", "--work-of-adhesion", "0.005"],
+        ["exponential", "--work-of-adhesion", "0.005", "--range", "0.3"],
+        ["exponential", "--work-of-adhesion", "0.005", "--range", "0.3", "--core-stiffness", "1"],
+        ["dugdale", "--work-of-adhesion", "0.005", "--range", "0.5"],
+    ],
+    ids=lambda law: "-".join(law[:1] + (["soft"] if "--core-stiffness" in law else [])),
+)
+def test_path_every_adhesive_law(surface_file, tmp_path, law):
+    h = np.load(surface_file)
+    top = float(h.max())
+    out = tmp_path / "path.nc"
+    args = ["path", str(surface_file), "--interaction", *law, "-o", str(out), "--json"]
+    args += ["--offsets", str(top + 1.5), str(top - 0.2), "0.34", "--retract"]
+    r = CliRunner().invoke(main, args)
+    assert r.exit_code == 0, r.output
+    summary = json.loads(r.stdout)
+    assert summary["all_converged"] and summary["steps"] == 11
+    assert summary["pull_off"] > 0  # every law here is adhesive
+
+
+@pytest.mark.parametrize(
+    ("law", "message"),
+    [
+        (["dugdale", "--work-of-adhesion", "0.01"], "needs --range"),
+        (["exponential", "--range", "0.3"], "needs --work-of-adhesion"),
+        (["lj93", "--work-of-adhesion", "0.01", "--range", "1"], "--range does not apply"),
+        (["dugdale", "--work-of-adhesion", "0.01", "--range", "1", "--stiffness", "2"], "apply"),
+        (["hardwall", "--work-of-adhesion", "0.01"], "takes no"),
+        (["exponential", "--work-of-adhesion", "0.01", "--range", "-1"], "range"),
+    ],
+)
+def test_contact_bad_law_options(surface_file, law, message):
+    r = CliRunner().invoke(
+        main, ["contact", str(surface_file), "--interaction", *law, "--offset", "3"]
+    )
+    assert r.exit_code == 2 and message in r.output

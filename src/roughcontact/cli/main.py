@@ -61,6 +61,12 @@ def _interaction_options(f):
             default=None,
             help="lj93smooth site stiffness per area k = V''(a0) (default E*/(2 a0)).",
         ),
+        click.option(
+            "--core-stiffness",
+            type=float,
+            default=None,
+            help="exponential: soft repulsive core k_c for g < 0 (default: hard wall).",
+        ),
     ]
     for o in reversed(opts):
         f = o(f)
@@ -70,10 +76,22 @@ def _interaction_options(f):
 INTERACTIONS = ["hardwall", "lj93smooth", "lj93", "exponential", "dugdale"]
 
 
-def _make_interaction(name, work, range_, stiffness, modulus, pixel_size):
+def _make_interaction(name, work, range_, stiffness, core_stiffness, modulus, pixel_size):
     from .. import interactions as it
 
+    def need(value, option):
+        if value is None:
+            raise ParameterError(f"--interaction {name} needs {option}")
+        return value
+
+    unused = {"--stiffness": stiffness, "--core-stiffness": core_stiffness}
+    allowed = {"lj93smooth": ("--stiffness",), "exponential": ("--core-stiffness",)}
+    for option, value in unused.items():
+        if value is not None and option not in allowed.get(name, ()):
+            raise ParameterError(f"{option} does not apply to --interaction {name}")
     if name == "hardwall":
+        if work is not None or range_ is not None:
+            raise ParameterError("--interaction hardwall takes no --work-of-adhesion/--range")
         return it.HardWall()
     if name == "lj93smooth":
         return it.SmoothLJ93(
@@ -83,8 +101,21 @@ def _make_interaction(name, work, range_, stiffness, modulus, pixel_size):
             range=range_,
             work_of_adhesion=work,
         )
-    raise ParameterError(
-        f"--interaction {name} is not available yet (choose hardwall or lj93smooth)"
+    if name == "lj93":
+        if range_ is not None:
+            raise ParameterError("--range does not apply to --interaction lj93 (untruncated)")
+        return it.LennardJones93(
+            work_of_adhesion=need(work, "--work-of-adhesion"), equilibrium_distance=pixel_size
+        )
+    if name == "exponential":
+        return it.Exponential(
+            work_of_adhesion=need(work, "--work-of-adhesion"),
+            range=need(range_, "--range (decay length ρ)"),
+            core_stiffness=core_stiffness,
+        )
+    return it.MaugisDugdale(
+        work_of_adhesion=need(work, "--work-of-adhesion"),
+        range=need(range_, "--range (cohesive-zone width; σ0 = W/DR)"),
     )
 
 
@@ -230,6 +261,7 @@ def contact(
     work,
     range_,
     stiffness,
+    core_stiffness,
     save_fields,
     as_json,
 ):
@@ -244,7 +276,9 @@ def contact(
         raise ParameterError("give exactly one of --load or --offset")
     h = load_heights(surface_file)
     sub = _substrate(h.shape, modulus, pixel_size, thickness, poisson, base)
-    law = _make_interaction(interaction, work, range_, stiffness, modulus, pixel_size)
+    law = _make_interaction(
+        interaction, work, range_, stiffness, core_stiffness, modulus, pixel_size
+    )
     res = solve(h, sub, law, load=load, offset=offset, tol=tol, max_iter=max_iter)
     if save_fields:
         import numpy as np
@@ -316,6 +350,7 @@ def path(
     work,
     range_,
     stiffness,
+    core_stiffness,
     output,
     fields_at,
     as_json,
@@ -338,16 +373,25 @@ def path(
     values = start + np.sign(stop - start or 1) * abs(step) * np.arange(count)
     h = load_heights(surface_file)
     sub = _substrate(h.shape, modulus, pixel_size, thickness, poisson, base)
-    law = _make_interaction(interaction, work, range_, stiffness, modulus, pixel_size)
-    show = None
-    if not as_json:
+    law = _make_interaction(
+        interaction, work, range_, stiffness, core_stiffness, modulus, pixel_size
+    )
+    from tqdm import tqdm
 
-        def show(i, n, res):
-            click.echo(
-                f"  step {i}/{n}: d = {res.offset:.4f}  N/A0 = {res.load:.4e}  "
-                f"A_rep/A0 = {res.repulsive_area:.4f}  ({res.iterations} it)",
-                err=True,
-            )
+    bar = tqdm(
+        unit="step",
+        disable=None if not as_json else True,  # only on a terminal, never with --json
+        file=sys.stderr,
+    )
+
+    def show(i, n, res):
+        bar.total = n
+        bar.set_postfix_str(
+            f"d={res.offset:.4f} N/A0={res.load:.3e} Arep={res.repulsive_area:.4f} "
+            f"it={res.iterations}",
+            refresh=False,
+        )
+        bar.update(1)
 
     kwargs = {"offsets": values} if offsets is not None else {"loads": values}
     try:
@@ -363,8 +407,10 @@ def path(
             **kwargs,
         )
     except PathError as err:
+        bar.close()
         err.partial.to_netcdf(output, engine="h5netcdf")
         _fail(f"{err} (the {err.partial.sizes['step']} steps before it are in {output})", 1)
+    bar.close()
     ds.attrs["surface_file"] = str(surface_file)
     ds.to_netcdf(output, engine="h5netcdf")
     summary = {

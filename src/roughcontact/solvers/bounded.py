@@ -115,7 +115,7 @@ def minimize_energy_bounded(
     hf = h.ravel()
     base = offset - hf  # gap = base + w
     lower = -base
-    if rigid and lower.mean() > 0:
+    if rigid and lower.mean() > 1e-12 * (float(np.abs(hf).max()) + abs(offset)):
         raise ParameterError(
             f"offset must be >= mean(heights) = {hf.mean():g} for a hard wall on a substrate "
             f"with a rigid mean (got {offset:g}: the surfaces would overlap everywhere)"
