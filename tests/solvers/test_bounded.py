@@ -11,6 +11,7 @@ import pytest
 import roughcontact as rc
 from roughcontact.interactions import Exponential, MaugisDugdale
 from roughcontact.solvers.bounded import project_feasible
+from roughcontact.theory import maugis_parameter
 
 N = 96
 R = 80.0
@@ -91,10 +92,13 @@ def test_vanishing_adhesion_is_the_hard_wall(sphere):
 
 
 def test_dmt_pull_off_of_a_sphere(sphere):
-    # Maugis parameter lambda = 2 s0 (R/(pi w E*^2))^(1/3) = 0.03: the DMT limit, 2 pi w R
     h, sub = sphere
     w = 0.001
     law = MaugisDugdale(work_of_adhesion=w, range=2.0)
+    lam = maugis_parameter(
+        radius=R, contact_modulus=1.0, work_of_adhesion=w, cohesive_stress=law.cohesive_stress
+    )
+    assert lam < 0.03  # the DMT limit: pull-off 2 pi w R
     ds = rc.approach_retract(h, sub, law, offsets=np.linspace(2.2, -0.8, 31), tol=1e-9)
     assert ds.attrs["all_converged"]
     pull_off = ds.attrs["pull_off"] * sub.nominal_area
