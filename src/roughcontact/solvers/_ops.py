@@ -9,7 +9,13 @@ import numpy as np
 from .._backend import irfft2, rfft2
 from .._validate import ParameterError, heights2d
 
-__all__ = ["check_problem", "compliance_operator", "dot", "stiffness_operator"]
+__all__ = [
+    "check_hard_wall_offset",
+    "check_problem",
+    "compliance_operator",
+    "dot",
+    "stiffness_operator",
+]
 
 
 def _fourier_operator(substrate, which: int):
@@ -51,3 +57,19 @@ def check_problem(heights, substrate, tol, offset=None) -> np.ndarray:
     if not float(tol) > 0:
         raise ParameterError(f"tol must be > 0, got {tol!r}")
     return h
+
+
+def check_hard_wall_offset(heights, substrate, offset) -> None:
+    """Reject an offset that no impenetrable state reaches on a rigid-mean substrate.
+
+    With a rigid uniform mode the mean deflection is zero, so the mean gap is
+    ``d - mean(h)``; below ``mean(h)`` every state interpenetrates somewhere.
+    """
+    if offset is None or not substrate.rigid_mean:
+        return
+    mean = float(heights.mean())
+    if offset < mean - 1e-12 * (float(np.abs(heights).max()) + abs(offset)):
+        raise ParameterError(
+            f"offset must be >= mean(heights) = {mean:g} for a hard wall on a substrate with "
+            f"a rigid mean (got {offset:g}: the surfaces would overlap everywhere)"
+        )

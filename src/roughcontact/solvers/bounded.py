@@ -38,7 +38,7 @@ import time
 import numpy as np
 
 from .._validate import ParameterError
-from ._ops import check_problem, compliance_operator, stiffness_operator
+from ._ops import check_hard_wall_offset, check_problem, compliance_operator, stiffness_operator
 from ._ops import dot as _dot
 from .observables import make_result
 from .smooth import _line_minimum
@@ -115,11 +115,7 @@ def minimize_energy_bounded(
     hf = h.ravel()
     base = offset - hf  # gap = base + w
     lower = -base
-    if rigid and lower.mean() > 1e-12 * (float(np.abs(hf).max()) + abs(offset)):
-        raise ParameterError(
-            f"offset must be >= mean(heights) = {hf.mean():g} for a hard wall on a substrate "
-            f"with a rigid mean (got {offset:g}: the surfaces would overlap everywhere)"
-        )
+    check_hard_wall_offset(h, substrate, offset)
     green = compliance_operator(substrate)
     stiff = stiffness_operator(substrate)
     scale = float(np.std(hf)) or substrate.pixel_size

@@ -68,9 +68,12 @@ def approach_retract(
     jump_factor : float
         A step is flagged as an instability (jump into or out of contact) when the
         largest change of the deflection exceeds ``jump_factor`` times the change of
-        the offset: on a stable branch the contact sites follow the rigid surface
-        (|Δw| ≈ |Δd|) while a jump moves parts of the substrate by the interaction range
-        or more.
+        the offset plus half the interaction's range (Δr, ρ, δ; a0 for the untruncated
+        LJ wall); the non-adhesive hard wall has no instabilities. Sites at the edge of
+        a growing contact move by more than |Δd| on a stable branch too, but not by a
+        sizeable fraction of the range unless the state jumps: on a stable branch the
+        contact sites follow the rigid surface (|Δw| ≈ |Δd|) while a jump moves parts of
+        the substrate by the interaction range or more.
     progress : callable, optional
         ``progress(step, n_steps, result)`` after every step (e.g. a progress bar).
 
@@ -101,6 +104,7 @@ def approach_retract(
         branch += ["retract"] * (values.size - len(branch))
     fields_at = {int(i) % values.size for i in fields_at}
 
+    jump_length = _jump_length(interaction)
     rows, fields, previous, t0 = [], {}, None, time.perf_counter()
     for step, value in enumerate(values):
         kwargs = {control: float(value)}
@@ -118,7 +122,7 @@ def approach_retract(
         else:
             dw = float(np.abs(res.deflection - previous.deflection).max())
             dd = abs(res.offset - previous.offset)
-            row["jump"] = bool(dw > jump_factor * dd + 1e-12 * (1 + dd))
+            row["jump"] = bool(dw > jump_factor * dd + jump_length)
         rows.append(row)
         if step in fields_at:
             fields[step] = (res.pressure, res.gap, res.deflection)
@@ -126,6 +130,14 @@ def approach_retract(
         if progress is not None:
             progress(step + 1, values.size, res)
     return _dataset(rows, branch, fields, control, t0, interaction, substrate)
+
+
+def _jump_length(interaction) -> float:
+    """Half the distance over which the law attracts: the scale of a snap (length)."""
+    if interaction is None or not getattr(interaction, "adhesive", True):
+        return math.inf  # the hard wall: every non-adhesive path is stable
+    scale = getattr(interaction, "range", None) or interaction.equilibrium_distance
+    return 0.5 * float(scale)
 
 
 def _dataset(rows, branch, fields, control, t0, interaction, substrate):

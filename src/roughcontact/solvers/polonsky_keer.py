@@ -28,7 +28,7 @@ import time
 import numpy as np
 
 from .._validate import ParameterError
-from ._ops import check_problem, compliance_operator
+from ._ops import check_hard_wall_offset, check_problem, compliance_operator
 from ._ops import dot as _dot
 from .observables import make_result
 
@@ -131,6 +131,7 @@ def polonsky_keer(
             raise ParameterError(f"load must be finite and >= 0 for a hard wall, got {load!r}")
     else:
         offset = float(offset)
+        check_hard_wall_offset(h, substrate, offset)
     tol = float(tol)
 
     hf = h.ravel()
