@@ -8,6 +8,7 @@ import time
 import numpy as np
 
 from .._validate import ParameterError
+from ..analysis.contact_geometry import contact_patches
 from .solve import solve
 
 __all__ = ["PathError", "approach_retract"]
@@ -81,8 +82,10 @@ def approach_retract(
     -------
     xarray.Dataset
         Indexed by ``step``: offset, load, repulsive/attractive load and area, mean gap,
-        perimeter, iterations, residual, converged, solve_seconds, branch
-        ("approach"/"retract"), jump; attrs ``pull_off`` (per A0, >= 0: magnitude of the
+        perimeter, iterations, residual, converged, solve_seconds, repulsive_patches
+        (number of connected repulsive patches, periodic), branch ("approach"/"retract"),
+        jump; attrs: the provenance of :func:`provenance` (surface statistics,
+        substrate, interaction parameters) and ``pull_off`` (per A0, >= 0: magnitude of the
         most negative load on retraction), ``all_converged``. Loads and areas per A0.
 
     Raises
@@ -105,6 +108,7 @@ def approach_retract(
     fields_at = {int(i) % values.size for i in fields_at}
 
     jump_length = _jump_length(interaction)
+    attrs = provenance(heights, substrate, interaction)
     rows, fields, previous, t0 = [], {}, None, time.perf_counter()
     for step, value in enumerate(values):
         kwargs = {control: float(value)}
@@ -114,9 +118,10 @@ def approach_retract(
         if "non-finite" in res.message or not math.isfinite(res.load):
             raise PathError(
                 f"step {step} ({control} = {value:g}): {res.message}",
-                _dataset(rows, branch, fields, control, t0, interaction, substrate),
+                _dataset(rows, branch, fields, control, t0, attrs),
             )
         row = {k: getattr(res, k) for k in _SCALARS}
+        row["repulsive_patches"] = int(contact_patches(res.pressure > 0)[1].size)
         if previous is None:
             row["jump"] = False
         else:
@@ -129,7 +134,7 @@ def approach_retract(
         previous = res
         if progress is not None:
             progress(step + 1, values.size, res)
-    return _dataset(rows, branch, fields, control, t0, interaction, substrate)
+    return _dataset(rows, branch, fields, control, t0, attrs)
 
 
 def _jump_length(interaction) -> float:
@@ -140,15 +145,57 @@ def _jump_length(interaction) -> float:
     return 0.5 * float(scale)
 
 
-def _dataset(rows, branch, fields, control, t0, interaction, substrate):
+def provenance(heights, substrate, interaction) -> dict:
+    """Everything needed to analyse a path without its inputs: NetCDF-ready attributes.
+
+    Surface statistics (spectral h_rms, h'rms, h''rms, d_rep = 4h'rms/h''rms, the
+    shortest wavelength present), the substrate (E*, a0, grid, thickness, ν) and the
+    interaction's parameters, each under its own key (units as in the rest of the API).
+    """
+    from .. import __version__
+    from ..surfaces.statistics import short_cutoff_estimate, statistics
+
+    a0 = substrate.pixel_size
+    stats = statistics(heights, pixel_size=a0)
+    attrs = {
+        "rms_height": stats.rms_height,
+        "rms_slope": stats.rms_slope,
+        "rms_curvature": stats.rms_curvature,
+        "predicted_d_rep": stats.predicted_d_rep,
+        "short_cutoff_estimate": short_cutoff_estimate(heights, pixel_size=a0),
+        "contact_modulus": substrate.contact_modulus,
+        "pixel_size": a0,
+        "grid": list(substrate.shape),
+        "nominal_area": substrate.nominal_area,
+        "thickness": math.inf if substrate.thickness is None else substrate.thickness,
+        "poisson": substrate.poisson,
+        "interaction_name": getattr(interaction, "name", "hardwall"),
+        "interaction": repr(interaction),
+        "substrate": repr(substrate),
+        "roughcontact_version": __version__,
+    }
+    for key in _LAW_PARAMETERS:
+        value = getattr(interaction, key, None)
+        if isinstance(value, (int, float)) and not isinstance(value, bool):
+            attrs[key] = float(value)
+    return attrs
+
+
+_LAW_PARAMETERS = (
+    "work_of_adhesion",
+    "range",
+    "stiffness",
+    "equilibrium_distance",
+    "core_stiffness",
+)
+
+
+def _dataset(rows, branch, fields, control, t0, attrs):
     import xarray as xr
 
     n = len(rows)
-    data = (
-        {k: ("step", np.array([r[k] for r in rows])) for k in (*_SCALARS, "jump")}
-        if n
-        else {k: ("step", np.zeros(0)) for k in (*_SCALARS, "jump")}
-    )
+    columns = (*_SCALARS, "repulsive_patches", "jump")
+    data = {k: ("step", np.array([r[k] for r in rows]) if n else np.zeros(0)) for k in columns}
     data["branch"] = ("step", np.array(branch[:n], dtype=str))
     ds = xr.Dataset(data, coords={"step": np.arange(n)})
     if fields:
@@ -164,8 +211,7 @@ def _dataset(rows, branch, fields, control, t0, interaction, substrate):
             "pull_off": pull_off,
             "all_converged": int(all(r["converged"] for r in rows)),
             "total_seconds": time.perf_counter() - t0,
-            "interaction": repr(interaction),
-            "substrate": repr(substrate),
+            **attrs,
             "units": "lattice units unless given: loads and areas per nominal area A0",
         }
     )
