@@ -234,3 +234,22 @@ def test_contact_bad_law_options(surface_file, law, message):
         main, ["contact", str(surface_file), "--interaction", *law, "--offset", "3"]
     )
     assert r.exit_code == 2 and message in r.output
+
+
+def test_analyze_json_keys(surface_file, tmp_path):
+    h = np.load(surface_file)
+    out = tmp_path / "p.nc"
+    top = float(h.max())
+    args = ["path", str(surface_file), "-o", str(out), "--json"]
+    r = CliRunner().invoke(main, [*args, "--offsets", str(top), str(top - 0.6), "0.05"])
+    assert r.exit_code == 0, r.output
+    r = CliRunner().invoke(main, ["analyze", str(out), "--target-area", "0.02", "--json"])
+    assert r.exit_code == 0, r.output
+    summary = json.loads(r.stdout)
+    for key in ("kappa", "kappa_rep", "kappa_att", "area_ratio", "d_rep", "d_rep_predicted",
+                "attractive_pressure_over_w_per_dr", "pull_off", "sticky"):  # fmt: skip
+        assert key in summary
+    assert summary["kappa"] == pytest.approx(summary["kappa_rep"]) and summary["kappa"] > 0
+    assert summary["kappa_att"] is None
+    r = CliRunner().invoke(main, ["analyze", str(surface_file)])
+    assert r.exit_code == 2 and "not a readable NetCDF" in r.output

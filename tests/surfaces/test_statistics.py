@@ -196,3 +196,12 @@ def test_bad_method_and_pixel_size():
 def test_sinusoid_geometry_statistics_consistent():
     h = sinusoid((32, 16), 8.0, 1.0, axis=1)
     np.testing.assert_allclose(statistics(h).rms_slope, 2 * np.pi / 8 / math.sqrt(2), rtol=1e-12)
+
+
+def test_short_cutoff_estimate_recovers_the_generator_cutoff():
+    from roughcontact.surfaces.statistics import short_cutoff_estimate
+
+    h = self_affine((128, 96), hurst=0.7, rms_slope=0.1, short_cutoff=8, seed=4)
+    assert short_cutoff_estimate(h) == pytest.approx(8.0, rel=0.02)
+    white = np.random.default_rng(0).normal(size=(64, 64))
+    assert short_cutoff_estimate(white) == pytest.approx(2 / np.sqrt(2))  # the (π, π) mode

@@ -470,3 +470,12 @@ def demo(size, seed, as_json):
     else:
         click.echo(f"kappa_rep: {out['kappa_rep_error']}")
     click.echo(f"all converged: {out['all_converged']}; total {out['total_seconds']:.1f} s")
+
+
+def _register_commands():
+    from .analyze import analyze
+
+    main.add_command(analyze)
+
+
+_register_commands()

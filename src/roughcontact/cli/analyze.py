@@ -1,0 +1,52 @@
+"""``roughcontact analyze PATH.nc``: the paper's analysis of a load path."""
+
+from __future__ import annotations
+
+import json
+
+import click
+
+
+@click.command("analyze")
+@click.argument("path_file", metavar="PATH.nc", type=click.Path(dir_okay=False))
+@click.option(
+    "--target-area",
+    type=float,
+    default=0.01,
+    show_default=True,
+    help="A_rep/A0 at which κ, κ_rep, κ_att are measured (the paper: 1 %).",
+)
+@click.option(
+    "--branch",
+    type=click.Choice(["approach", "retract"]),
+    default="approach",
+    show_default=True,
+    help="Branch of the path to analyse.",
+)
+@click.option(
+    "--fit-max-area",
+    type=float,
+    default=0.05,
+    show_default=True,
+    help="Largest A_rep/A0 in the linear fit of A_rep against N.",
+)
+@click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
+def analyze(path_file, target_area, branch, fit_max_area, as_json):
+    """Measure κ, κ_rep, κ_att, A_rep/A_att, d_rep and pull-off on a path, next to theory.
+
+    Areas and loads per A0; non-finite values (no attraction) print as null.
+    """
+    from ..analysis.path_analysis import analyze_path, load_path
+
+    ds = load_path(path_file)
+    summary = analyze_path(
+        ds, target_area=target_area, branch=branch, fit_max_area=fit_max_area
+    ).to_dict()
+    for message in summary["warnings"]:
+        click.echo(f"roughcontact: warning: {message}", err=True)
+    if as_json:
+        click.echo(json.dumps(summary))
+    else:
+        for k, v in summary.items():
+            if k != "warnings":
+                click.echo(f"{k:>34}: {v}")

@@ -1,0 +1,88 @@
+"""The paper's analysis of load paths: κ's, Eq. 4, d_rep, fits, bad input."""
+
+import math
+
+import numpy as np
+import pytest
+import xarray as xr
+
+import roughcontact as rc
+from roughcontact.analysis.path_analysis import analyze_path
+
+N = 128
+
+
+@pytest.fixture(scope="module")
+def surface():
+    h = rc.self_affine((N, N), hurst=0.8, rms_slope=0.1, short_cutoff=4, seed=7)
+    return h, rc.Substrate((N, N))
+
+
+@pytest.fixture(scope="module")
+def hard_path(surface):
+    h, sub = surface
+    return rc.approach_retract(h, sub, offsets=h.max() - np.linspace(0.0, 0.6, 13), retract=False)
+
+
+def adhesive_path(surface, adhesion_length):
+    h, sub = surface
+    law = rc.SmoothLJ93.from_adhesion_length(adhesion_length)
+    top = h.max() + law.cutoff
+    return rc.approach_retract(h, sub, law, offsets=top - np.linspace(0.0, 1.0, 21), tol=1e-7)
+
+
+def test_non_adhesive_kappa_and_identities(hard_path):
+    r = analyze_path(hard_path)
+    assert 1.8 < r.kappa_rep < 2.7  # literature 1.8-2.6; finite-size scatter at 128²
+    assert r.kappa == pytest.approx(r.kappa_rep) and math.isinf(r.kappa_att)
+    assert r.kappa_fit == pytest.approx(r.kappa_rep, rel=0.1)  # A_rep ∝ N at small areas
+    assert 0 < r.kappa_fit_error < 0.05 * r.kappa_fit
+    assert not r.sticky and r.warnings == []
+    # d_rep = π A_rep / P, within a factor of 2 of 4 h'rms / h''rms (the paper)
+    assert r.d_rep == pytest.approx(math.pi * 0.01 / r.perimeter)
+    assert 0.5 < r.d_rep / r.d_rep_predicted < 2
+    assert r.contact_stiffness > 0
+
+
+@pytest.mark.parametrize("adhesion_length", [0.0005, 0.005])
+def test_adhesive_identities_and_eq4(surface, adhesion_length):
+    r = analyze_path(adhesive_path(surface, adhesion_length))
+    assert 1 / r.kappa == pytest.approx(1 / r.kappa_rep - 1 / r.kappa_att, rel=1e-12)
+    # Eq. 4: the mean attractive pressure is w/Δr (within 10 % for weak adhesion)
+    assert r.attractive_pressure_over_w_per_dr == pytest.approx(1.0, abs=0.12)
+    assert r.area_ratio == pytest.approx(0.01 / r.attractive_area)
+
+
+def test_clearly_sticky_path_has_negative_kappa(surface):
+    r = analyze_path(adhesive_path(surface, 0.005))
+    assert r.kappa < 0 and r.sticky
+    assert r.kappa_att < r.kappa_rep  # Eq. 10's equivalent form
+
+
+def test_bad_input(hard_path, tmp_path):
+    with pytest.raises(rc.ParameterError, match="not reached"):
+        analyze_path(hard_path, target_area=0.9)
+    with pytest.raises(rc.ParameterError, match="target_area"):
+        analyze_path(hard_path, target_area=0.0)
+    with pytest.raises(rc.ParameterError, match="lacks"):
+        analyze_path(hard_path.drop_vars("perimeter"))
+    stranger = tmp_path / "other.nc"
+    xr.Dataset({"x": ("t", np.arange(3.0))}).to_netcdf(stranger, engine="h5netcdf")
+    with pytest.raises(rc.ParameterError, match="lacks"):
+        analyze_path(stranger)
+    junk = tmp_path / "junk.nc"
+    junk.write_text("not netcdf")
+    with pytest.raises(rc.ParameterError, match="not a readable NetCDF"):
+        analyze_path(junk)
+
+
+def test_too_few_asperities_warns(surface):
+    h = rc.self_affine((64, 64), hurst=0.8, rms_slope=0.1, short_cutoff=16, seed=1)
+    ds = rc.approach_retract(h, rc.Substrate((64, 64)), offsets=h.max() - np.linspace(0, 1, 9))
+    assert any("asperities" in w for w in analyze_path(ds).warnings)
+
+
+def test_path_round_trips_through_netcdf(hard_path, tmp_path):
+    f = tmp_path / "p.nc"
+    hard_path.to_netcdf(f, engine="h5netcdf")
+    assert analyze_path(f).to_dict() == analyze_path(hard_path).to_dict()
