@@ -46,6 +46,10 @@ class PathAnalysis:
     ``sticky`` (measured) is True when κ < 0 (the surfaces hold together under tension
     at the target area) or when the pull-off force exceeds ``STICKY_PULL_OFF`` (10 %) of
     the repulsive load at the target area.
+    ``predicted_*``: the Pastewka–Robbins theory (Eqs. 6, 7, 10, with the measured
+    κ_rep and the measured d_rep; ``*_from_curvature`` with d_rep = 4h'rms/h''rms) for
+    laws with a range Δr and a work of adhesion (None/NaN otherwise), see
+    :func:`roughcontact.theory.pastewka_robbins.predict`.
     ``kappa_att`` and ``area_ratio`` are ``inf`` without attraction; ``kappa_fit_error``
     is the standard error of the fitted slope; ``warnings`` lists conditions under which
     the paper's analysis is not meaningful (too few asperities in contact, a jump
@@ -77,6 +81,15 @@ class PathAnalysis:
     sticky: bool
     rms_slope: float
     contact_modulus: float
+    predicted_area_ratio: float = math.nan
+    predicted_kappa_att: float = math.nan
+    predicted_kappa: float = math.nan
+    predicted_margin: float = math.nan
+    predicted_sticky: bool | None = None
+    predicted_area_ratio_from_curvature: float = math.nan
+    predicted_kappa_att_from_curvature: float = math.nan
+    predicted_sticky_from_curvature: bool | None = None
+    necessary_condition_met: bool | None = None
     warnings: list[str] = field(default_factory=list)
 
     def to_dict(self) -> dict:
@@ -188,6 +201,9 @@ def analyze_path(
     kappa_fit, kappa_err, n_fit = _fit_kappa(col["load"], area, fit_max_area, slope, modulus)
     pull_off = float(a.get("pull_off", math.nan))
     kappa = _ratio(scale, at["load"]) if at["load"] != 0 else math.inf
+    kappa_rep = _ratio(scale, at["repulsive_load"])
+    d_rep = _ratio(math.pi * target, at["perimeter"])
+    theory = _theory(a, kappa_rep, d_rep, w / modulus, dr)
     return PathAnalysis(
         target_area=target,
         offset=at["offset"],
@@ -197,7 +213,7 @@ def analyze_path(
         attractive_area=at["attractive_area"],
         perimeter=at["perimeter"],
         kappa=kappa,
-        kappa_rep=_ratio(scale, at["repulsive_load"]),
+        kappa_rep=kappa_rep,
         kappa_att=_ratio(scale, at["attractive_load"]),
         area_ratio=_ratio(target, at["attractive_area"]),
         repulsive_pressure=at["repulsive_load"] / target,
@@ -205,7 +221,7 @@ def analyze_path(
         attractive_pressure_over_w_per_dr=_ratio(
             _ratio(at["attractive_load"], at["attractive_area"]), w / dr
         ),
-        d_rep=_ratio(math.pi * target, at["perimeter"]),
+        d_rep=d_rep,
         d_att=_ratio(at["attractive_area"], at["perimeter"]),
         d_rep_predicted=float(a.get("predicted_d_rep", math.nan)),
         kappa_fit=kappa_fit,
@@ -216,5 +232,35 @@ def analyze_path(
         sticky=bool(kappa < 0 or (pull_off > STICKY_PULL_OFF * at["repulsive_load"])),
         rms_slope=slope,
         contact_modulus=modulus,
+        **theory,
         warnings=warnings,
     )
+
+
+def _theory(attrs, kappa_rep, d_rep, adhesion_length, interaction_range) -> dict:
+    """Pastewka–Robbins predictions for the path's parameters, or {} if they do not apply."""
+    from ..theory.pastewka_robbins import predict
+
+    usable = [adhesion_length, interaction_range, kappa_rep, d_rep]
+    if not all(math.isfinite(v) and v > 0 for v in usable):
+        return {}
+    common = {
+        "rms_slope": float(attrs["rms_slope"]),
+        "interaction_range": interaction_range,
+        "adhesion_length": adhesion_length,
+        "kappa_rep": kappa_rep,
+        "atomic_spacing": float(attrs.get("equilibrium_distance", attrs["pixel_size"])),
+    }
+    measured = predict(d_rep=d_rep, **common)
+    curvature = predict(rms_curvature=float(attrs["rms_curvature"]), **common)
+    return {
+        "predicted_area_ratio": measured.area_ratio,
+        "predicted_kappa_att": measured.kappa_att,
+        "predicted_kappa": measured.kappa,
+        "predicted_margin": measured.margin,
+        "predicted_sticky": bool(measured.sticky),
+        "predicted_area_ratio_from_curvature": curvature.area_ratio,
+        "predicted_kappa_att_from_curvature": curvature.kappa_att,
+        "predicted_sticky_from_curvature": bool(curvature.sticky),
+        "necessary_condition_met": bool(measured.necessary_condition_met),
+    }

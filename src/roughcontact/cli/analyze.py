@@ -34,7 +34,9 @@ import click
 def analyze(path_file, target_area, branch, fit_max_area, as_json):
     """Measure κ, κ_rep, κ_att, A_rep/A_att, d_rep and pull-off on a path, next to theory.
 
-    Areas and loads per A0; non-finite values (no attraction) print as null.
+    Areas and loads per A0; non-finite values (no attraction) print as null. The
+    predicted_* keys are Pastewka & Robbins' Eqs. 6, 7 and 10 for the path's surface and
+    interaction (with the measured κ_rep and d_rep; *_from_curvature: d_rep = 4h'/h'').
     """
     from ..analysis.path_analysis import analyze_path, load_path
 

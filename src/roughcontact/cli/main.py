@@ -474,8 +474,10 @@ def demo(size, seed, as_json):
 
 def _register_commands():
     from .analyze import analyze
+    from .criterion import criterion
 
     main.add_command(analyze)
+    main.add_command(criterion)
 
 
 _register_commands()

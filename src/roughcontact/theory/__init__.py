@@ -91,3 +91,70 @@ __all__ = [
     "westergaard_full_contact_pressure",
     "westergaard_pressure",
 ]
+
+# Rough-surface theories: Pastewka & Robbins (2014) Eqs. 4-10 and the stickiness
+# criterion (:mod:`.pastewka_robbins`); Persson (2001) and Bush-Gibson-Thomas (1975)
+# area-load laws (:mod:`.persson`); Greenwood-Williamson with Hertz, DMT and JKR
+# (Fuller-Tabor 1975) summits from Nayak/McCool summit statistics
+# (:mod:`.greenwood_williamson`).
+from .greenwood_williamson import (  # noqa: E402
+    GreenwoodWilliamsonCurve,
+    SummitStatistics,
+    fuller_tabor_parameter,
+    greenwood_williamson,
+    spectral_moments,
+    summit_statistics,
+    summit_statistics_from_heights,
+)
+from .pastewka_robbins import (  # noqa: E402
+    AREA_RATIO_PREFACTOR,
+    KAPPA_REP,
+    NECESSARY_CONDITION_CONSTANT,
+    STICKINESS_THRESHOLD,
+    PastewkaRobbinsPrediction,
+    area_ratio,
+    asperity_radius,
+    attractive_load,
+    height_change,
+    kappa_att,
+    kappa_att_from_area_ratio,
+    kappa_from_components,
+    necessary_condition,
+    predict,
+    predicted_d_rep,
+    stickiness_margin,
+    stickiness_parameter,
+)
+from .persson import BGT_KAPPA, PERSSON_KAPPA, bgt_area, persson_area, persson_load  # noqa: E402
+
+__all__ += [
+    "AREA_RATIO_PREFACTOR",
+    "BGT_KAPPA",
+    "KAPPA_REP",
+    "NECESSARY_CONDITION_CONSTANT",
+    "PERSSON_KAPPA",
+    "STICKINESS_THRESHOLD",
+    "GreenwoodWilliamsonCurve",
+    "PastewkaRobbinsPrediction",
+    "SummitStatistics",
+    "area_ratio",
+    "asperity_radius",
+    "attractive_load",
+    "bgt_area",
+    "fuller_tabor_parameter",
+    "greenwood_williamson",
+    "height_change",
+    "kappa_att",
+    "kappa_att_from_area_ratio",
+    "kappa_from_components",
+    "necessary_condition",
+    "persson_area",
+    "persson_load",
+    "predict",
+    "predicted_d_rep",
+    "spectral_moments",
+    "stickiness_margin",
+    "stickiness_parameter",
+    "summit_statistics",
+    "summit_statistics_from_heights",
+]

@@ -83,7 +83,8 @@ AREA_RATIO_PREFACTOR = (16.0 / (9.0 * math.pi)) ** (1.0 / 3.0)
 STICKINESS_THRESHOLD = math.pi * (3.0 / 16.0) ** (2.0 / 3.0)
 #: The paper's non-adhesive area–load prefactor ``kappa_rep ~ 2`` (Eq. 2, Fig. 4).
 KAPPA_REP = 2.0
-#: ``(256/(9 pi^3))^(1/3) = 0.9717``: ``kappa_att >= c h'_rms a0/l_a`` if ``Delta_r = a0 <= delta_h``.
+#: ``c = (256/(9 pi^3))^(1/3) = 0.9717``: ``kappa_att >= c h'_rms a0/l_a`` if
+#: ``Delta_r = a0 <= delta_h`` (the necessary condition).
 NECESSARY_CONDITION_CONSTANT = (256.0 / (9.0 * math.pi**3)) ** (1.0 / 3.0)
 
 
@@ -106,14 +107,8 @@ def _out(x):
 def attractive_load(attractive_area, work_of_adhesion, interaction_range):
     """Eq. 4: ``N_att = (w/Delta_r) A_att`` [force, or pressure for areas per A0].
 
-    Parameters
-    ----------
-    attractive_area : float or array
-        A_att >= 0 [length^2] (or a fraction of A0).
-    work_of_adhesion : float or array
-        w > 0 [energy/length^2].
-    interaction_range : float or array
-        Delta_r > 0 [length].
+    ``attractive_area`` A_att >= 0 [length^2, or a fraction of A0]; ``work_of_adhesion``
+    w > 0 [energy/length^2]; ``interaction_range`` Delta_r > 0 [length].
     """
     a = np.asarray(attractive_area, dtype=float)
     if not np.all(np.isfinite(a)) or np.any(a < 0):
@@ -160,7 +155,9 @@ def kappa_att_from_area_ratio(rms_slope, interaction_range, adhesion_length, are
 
 
 def kappa_att(rms_slope, d_rep, interaction_range, adhesion_length):
-    """Eq. 7: ``kappa_att = (h'_rms Delta_r/l_a) (16/(9 pi))^(1/3) (h'_rms d_rep/(pi Delta_r))^(2/3)``.
+    """Eq. 7: Eq. 5 with Eq. 6 [dimensionless]::
+
+        kappa_att = (h'_rms Delta_r/l_a) (16/(9 pi))^(1/3) (h'_rms d_rep/(pi Delta_r))^(2/3)
 
     Parameters as in :func:`area_ratio`; ``adhesion_length`` is ``l_a = w/E*`` > 0 [length].
     """
@@ -232,21 +229,9 @@ def necessary_condition(adhesion_length, rms_slope, atomic_spacing=1.0, kappa_re
     ``c = NECESSARY_CONDITION_CONSTANT = 0.9717`` (module docstring), i.e.
     ``l_a/a0 > 0.486 h'_rms`` for ``kappa_rep = 2`` (the paper: ``l_a/a0 >~ 0.5 h'_rms``).
 
-    Parameters
-    ----------
-    adhesion_length : float or array
-        l_a = w/E* > 0 [length].
-    rms_slope : float or array
-        h'_rms > 0.
-    atomic_spacing : float
-        a0 > 0 [length], the atomic bond distance / smallest possible height step
-        (1 in lattice units).
-    kappa_rep : float
-        > 0, default 2.
-
-    Returns
-    -------
-    bool or ndarray of bool
+    ``adhesion_length`` l_a = w/E* > 0 [length]; ``rms_slope`` h'_rms > 0;
+    ``atomic_spacing`` a0 > 0 [length], the bond distance or smallest height step
+    (1 in lattice units); ``kappa_rep`` > 0. Returns a bool (array for array input).
     """
     la = _pos("adhesion_length", adhesion_length)
     s = _pos("rms_slope", rms_slope)
@@ -259,32 +244,19 @@ def necessary_condition(adhesion_length, rms_slope, atomic_spacing=1.0, kappa_re
 class PastewkaRobbinsPrediction:
     """Everything the theory predicts for one surface and interaction (see :func:`predict`).
 
-    Attributes
-    ----------
-    rms_slope, d_rep, interaction_range, adhesion_length, kappa_rep, atomic_spacing
-        The inputs (d_rep as used); lengths in the caller's units.
-    d_rep_source : str
-        ``"given"`` or ``"predicted"`` (``4 h'_rms/h''_rms`` from ``rms_curvature``).
-    rms_curvature : float
-        h''_rms if it was given, else NaN.
-    area_ratio : float
-        A_rep/A_att (Eq. 6).
-    kappa_att : float
-        Eq. 7.
-    kappa : float
-        ``1/(1/kappa_rep - 1/kappa_att)``; negative when sticky, inf at the onset.
-    height_change : float
-        ``delta_h = h'_rms d_rep/4`` (Eq. 9).
-    stickiness_parameter : float
-        S, the left-hand side of Eq. 10.
-    margin : float
-        ``pi (3/16)^(2/3)/S = kappa_rep/kappa_att``; > 1 sticky.
-    sticky : bool
-        ``S < pi (3/16)^(2/3)`` (equivalently ``kappa_att < kappa_rep``).
-    threshold_adhesion_length : float
-        ``l_a/margin``: the adhesion length at the onset of stickiness.
-    necessary_condition_met : bool
-        ``l_a/a0 > 0.486 h'_rms`` (for kappa_rep = 2; :func:`necessary_condition`).
+    The inputs (``rms_slope``, ``d_rep`` as used, ``interaction_range``,
+    ``adhesion_length``, ``kappa_rep``, ``atomic_spacing``; lengths in the caller's
+    units), ``d_rep_source`` (``"given"`` or ``"predicted"`` = ``4 h'_rms/h''_rms``),
+    ``rms_curvature`` (NaN unless given), and:
+
+    * ``area_ratio`` A_rep/A_att (Eq. 6), ``kappa_att`` (Eq. 7);
+    * ``kappa = 1/(1/kappa_rep - 1/kappa_att)``: negative when sticky, inf at the onset;
+    * ``height_change`` ``delta_h = h'_rms d_rep/4`` (Eq. 9);
+    * ``stickiness_parameter`` S, the left-hand side of Eq. 10;
+    * ``margin = pi (3/16)^(2/3)/S = kappa_rep/kappa_att`` (> 1 sticky) and ``sticky``
+      (``S < pi (3/16)^(2/3)``, equivalently ``kappa_att < kappa_rep``);
+    * ``threshold_adhesion_length = l_a/margin``, l_a at the onset of stickiness;
+    * ``necessary_condition_met``: ``l_a/a0 > 0.486 h'_rms`` (:func:`necessary_condition`).
     """
 
     rms_slope: float
