@@ -164,7 +164,18 @@ class SmoothLJ93:
 
     def pressure(self, gap):
         """p(g) = -V'(g) (pressure; > 0 repulsive)."""
-        return -self._evaluate(gap)[1]
+        # the solvers' hot path: only V' on the core and the band, nothing else computed
+        g = np.asarray(gap, dtype=float)
+        a0, dr, w = self.equilibrium_distance, self.range, self.work_of_adhesion
+        p = np.zeros_like(g)
+        core = g < a0
+        if core.any():
+            p[core] = -lj93_with_core(g[core], self.epsilon, self.sigma, a0)[1]
+        band = (g >= a0) & (g < a0 + dr)
+        if band.any():
+            x = (g[band] - a0) / dr
+            p[band] = (-12.0 * w / dr) * x * (1.0 - x) ** 2
+        return p
 
     def curvature(self, gap):
         """V''(g) (pressure / length)."""

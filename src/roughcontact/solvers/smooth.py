@@ -29,8 +29,9 @@ import time
 
 import numpy as np
 
+from .._backend import irfft2, rfft2
 from .._validate import ParameterError
-from ._ops import check_problem, compliance_operator, stiffness_operator
+from ._ops import check_problem, stiffness_operator
 from ._ops import dot as _dot
 from .observables import make_result
 
@@ -93,8 +94,8 @@ def minimize_energy(
     n = h.size
     es = substrate.contact_modulus
     rigid = substrate.rigid_mean
-    conv = compliance_operator(substrate)
     elastic_pressure = stiffness_operator(substrate)
+    stiffness = substrate._arrays(np.empty(0))[0]
 
     base = offset - h.ravel()  # gap = base + w
     if initial is not None:
@@ -115,11 +116,12 @@ def minimize_energy(
 
     gap = base + w
     gr = gradient(gap)
+    conv = kbar = None
     s = ks = z_old = None
     gz_old = 1.0
     converged, message, residual, it = False, "iteration cap reached", math.inf, 0
     while True:
-        residual = float(np.abs(gr).max()) / es
+        residual = max(float(gr.max()), -float(gr.min())) / es
         if not math.isfinite(residual):
             message = f"non-finite state at iteration {it} (check inputs and the interaction)"
             break
@@ -132,22 +134,27 @@ def minimize_energy(
             message = "stopped by callback"
             break
         it += 1
-        z = conv(gr)  # preconditioned gradient G gr
+        restart = s is None or it % restart_every == 0
+        if restart:
+            kbar = _mean_site_stiffness(interaction, gap)
+            conv = _shifted_compliance(stiffness, kbar, shape, rigid)
+        z = conv(gr)  # preconditioned gradient (K + kbar)^-1 gr
         gz = _dot(gr, z)
-        if s is None or it % restart_every == 0:
-            beta = 0.0
+        beta = 0.0 if restart else max(0.0, (gz - _dot(gr, z_old)) / gz_old)  # PR+
+        # K (K + kbar)^-1 = 1 - kbar (K + kbar)^-1 (the uniform mode of gr is projected
+        # out when it is rigid), so K z = gr - kbar z needs no second convolution
+        kz = np.multiply(z, -kbar)
+        kz += gr
+        if beta > 0:  # in place: s = -z + beta s, ks = -K z + beta ks
+            s *= beta
+            s -= z
+            ks *= beta
+            ks -= kz
         else:
-            beta = max(0.0, (gz - _dot(gr, z_old)) / gz_old)  # Polak-Ribiere+
-        # K G = 1 (the uniform mode of gr is projected out when it is rigid), so the
-        # elastic pressure of the direction needs no second convolution
-        if beta > 0:
-            s = -z + beta * s
-            ks = -gr + beta * ks
-        else:
-            s, ks = -z, -gr.copy()
+            s, ks = np.negative(z), np.negative(kz)
         slope0 = _dot(gr, s)
-        if slope0 >= 0:  # not a descent direction: restart along -G gr
-            s, ks = -z, -gr.copy()
+        if slope0 >= 0:  # not a descent direction: restart along the preconditioned -gr
+            s, ks = np.negative(z), np.negative(kz)
             slope0 = -gz
         z_old, gz_old = z, gz
         alpha = _line_minimum(interaction, gap, s, kw, ks, slope0)
@@ -158,7 +165,7 @@ def minimize_energy(
         kw += alpha * ks
         if it % 50 == 0:
             kw = elastic_pressure(w)  # remove round-off drift of the incremental update
-        gap = base + w
+        np.add(base, w, out=gap)
         gr = gradient(gap)
 
     kw = elastic_pressure(w)
@@ -181,6 +188,29 @@ def minimize_energy(
         repulsive=rep.reshape(shape),
         attractive=att.reshape(shape),
     )
+
+
+def _mean_site_stiffness(interaction, gap) -> float:
+    """Mean over all sites of the interaction's stiffness V''(g), its negative part dropped."""
+    cutoff = interaction.cutoff
+    g = gap[gap < cutoff] if math.isfinite(cutoff) else gap
+    return float(np.maximum(interaction.curvature(g), 0.0).sum()) / gap.size
+
+
+def _shifted_compliance(stiffness, kbar, shape, rigid):
+    r"""x -> (K + \bar k)^{-1} x: the Green's function of the substrate on a uniform
+    Winkler foundation of the sites' mean stiffness (rigid uniform mode kept rigid)."""
+    with np.errstate(divide="ignore"):
+        multiplier = 1.0 / (stiffness + kbar)
+    if rigid:
+        multiplier[0, 0] = 0.0
+
+    def apply(x_flat):
+        xq = rfft2(x_flat.reshape(shape))
+        xq *= multiplier
+        return irfft2(xq, shape, overwrite_x=True).ravel()
+
+    return apply
 
 
 def _line_minimum(interaction, gap, s, kw, ks, slope0, rtol=1e-3, max_eval=60):
