@@ -5,17 +5,23 @@ Minimises the total energy per the substrate's nominal area
 .. math:: E(w) = E_{el}(w) + a_0^2 \sum_i V(d - h_i + w_i)
 
 over the deflection ``w`` at fixed offset ``d``, by nonlinear conjugate gradients
-(Polak–Ribière+) preconditioned with the substrate's Green's function ``G = K^{-1}``.
-With that preconditioner the elastic part of the Hessian becomes the identity, so the
-iteration count does not grow with the grid size (the same idea as the Fourier
-preconditioning of Bugnicourt et al., Tribol. Int. 119, 145 (2018) and the mass-weighting
-of Zhou, Moseler & Müser, Phys. Rev. B 99, 144103 (2019)).
+(Polak–Ribière+) preconditioned with :math:`(K + \bar k)^{-1}`: the substrate's
+Green's function on a uniform Winkler foundation whose stiffness :math:`\bar k` is the
+mean over the sites of the interaction's stiffness :math:`\max(V''(g), 0)`, taken at the
+start of the solve (and at every restart). Without contact this is the plain Green's
+function, which makes the elastic part of the Hessian the identity (the Fourier
+preconditioning of Bugnicourt et al., Tribol. Int. 119, 145 (2018), and the
+mass-weighting of Zhou, Moseler & Müser, Phys. Rev. B 99, 144103 (2019)); in full contact
+it is the exact inverse Hessian. The iteration count still grows mildly with the grid
+(the contact patches' local stiffness and the number of sites that change regime; see
+``benchmarks/adhesive.py`` for measurements).
 
-Per iteration the solver needs ONE FFT convolution, ``G`` applied to the gradient: the
-elastic pressure of the search direction follows without a second transform because
-``K G = 1`` on the non-uniform modes. The step length is an exact line minimisation,
-cheap because the elastic energy is quadratic along the line and the interaction is
-local.
+Per iteration the solver needs ONE FFT convolution, the preconditioner applied to the
+gradient: the elastic pressure of the search direction follows without a second
+transform because :math:`K (K + \bar k)^{-1} = 1 - \bar k (K + \bar k)^{-1}` on the
+non-uniform modes. The step length is an exact line minimisation, cheap because the
+elastic energy is quadratic along the line and the interaction is local. (Preconditioned
+L-BFGS with the same line search was tried and took the same number of iterations.)
 
 Convergence measure (``residual``): the largest force imbalance per unit area,
 ``max |K w - p_int(g)|`` (excluding the uniform mode when it is rigid), divided by the

@@ -1,0 +1,640 @@
+"""Adhesive benchmark: a warm-started approach against Adhesion and tamaas (SPEC §5).
+
+One self-affine surface per size (H = 0.8, h'rms = 0.1, lambda_s = 8, lambda_L = n/2,
+fixed seed) on a periodic elastic half-space (E* = 1, a0 = 1), with the paper's smoothed
+9-3 Lennard-Jones wall (``rc.SmoothLJ93.from_adhesion_length(la)``: k = E*/(2 a0) per
+area, Delta_r = sqrt(24 a0 la), w = k Delta_r^2 / 12), brought into contact in ``--steps``
+equal steps of the offset d under displacement control, each step warm-started from the
+last. Prints one line per step and code and a summary per size, la and code; see
+README.md here.
+
+    python benchmarks/adhesive.py --sizes 256 512 --repeats 1 --json adhesive.json
+
+The approach (the same offsets for every code): d_start = max(h) + a0, where the summit
+sits at the equilibrium distance of the potential (first repulsive contact of the rigid
+surfaces; the attraction already acts over Delta_r around it), down to
+d_end = d_hw + a0 with d_hw the offset of the hard-wall solution at mean pressure
+``--end-load`` (default 5e-4 E*, ~1.2 % hard-wall contact, which gives A_rep ~ 2-3 % for
+la = 0.005). Step k = 1..steps solves d_k = d_start - k (d_start - d_end) / steps; step 1
+starts from the undeformed substrate (cold) in every code.
+
+Codes (peers are test/benchmark-only dependencies, imported inside functions):
+
+* roughcontact: ``rc.solve(h, sub, law, offset=d, initial=prev, tol=tol)``; convergence
+  is max |K w - p_int(g)| / E* <= tol (mean removed: the uniform mode is rigid).
+* Adhesion 0.93: ``SmoothContactSystem`` with ``LJ93(eps, sigma).spline_cutoff(gamma=w)``
+  (numerically identical potential, checked and printed before timing; by default with
+  Adhesion's ``linearize_core()`` below a0/2, where no state goes, see adhesion_potential) on a
+  ``PeriodicFFTElasticHalfSpace`` with a rigid uniform mode (``stiffness_q0=0``; the
+  objective is wrapped to act on the mean-free displacement, as ours), minimised by
+  ``scipy.optimize.minimize(method="L-BFGS-B", jac=True)`` from the previous step's
+  displacement, ``gtol = tol * E* * a0^2``, ``ftol = 0``: its gradient is the force
+  imbalance per pixel, so both codes stop on the same quantity. Skipped above
+  ``--adhesion-max-size`` (default 512) and stopped after ``--adhesion-time-cap`` seconds
+  per step (reported as not converged).
+* tamaas 2.9: ``PolonskyKeerRey`` with gap primal and mean-gap constraint plus an
+  ``ExponentialAdhesionFunctional`` (-gamma exp(-g/rho) on a hard wall) with
+  gamma = w and rho = 9 Delta_r / 16 (same work of adhesion and same largest tensile
+  stress 16 w / (9 Delta_r) as the smoothed LJ wall). Displacement control through the
+  mean gap: target = d - mean(h) - a0 (its hard wall at g = 0 stands for our g = a0).
+  Tolerance: ``tol`` in its own (complementarity) measure. Its solver keeps its state
+  between solves (warm start).
+
+Surface generation, the hard-wall solve that fixes the schedule, model construction
+and imports are never timed. BLAS runs on ``--blas-threads`` (default 1, via threadpoolctl):
+roughcontact calls no BLAS, but Adhesion's NuMPI reductions call ``np.dot`` on every
+evaluation, and a 2-thread OpenBLAS dot of 65k doubles took 12 ms instead of 9 us while
+another process kept one of the two cores busy.
+"""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import importlib
+import json
+import math
+import os
+import platform
+import sys
+import time
+from importlib import metadata
+
+import numpy as np
+from hardwall import capture_stderr_fd, fft_pair_seconds, n_cores, surface
+
+PEERS = ("adhesion", "tamaas")
+A0 = 1.0  # pixel size = equilibrium distance (lattice units)
+ES = 1.0  # contact modulus E*
+
+
+# ------------------------------------------------------------------------------ set-up
+def approach_offsets(h: np.ndarray, steps: int, end_load: float) -> dict:
+    """The displacement schedule (see the module docstring)."""
+    import roughcontact as rc
+
+    sub = rc.Substrate(h.shape, contact_modulus=ES, pixel_size=A0)
+    hw = rc.solve(h, sub, rc.HardWall(), load=end_load, tol=1e-8)
+    d_start = float(h.max()) + A0
+    d_end = float(hw.offset) + A0
+    k = np.arange(1, steps + 1)
+    return dict(
+        offsets=d_start - (d_start - d_end) * k / steps,
+        d_start=d_start,
+        d_end=d_end,
+        hardwall_area=float(hw.repulsive_area),
+    )
+
+
+def adhesion_potential(law, core: str = "linear"):
+    """Adhesion 0.93's smoothed LJ93 wall with the same V(g) as ``law``.
+
+    ``LJ93(eps, sigma)`` is the same 9-3 wall as ours (same eps, sigma: minimum at a0,
+    V''(a0) = k); ``spline_cutoff(gamma=w)`` (transition at the minimum) continues it
+    by the quartic that reaches zero with zero slope and curvature, whose range is
+    2 sqrt(3 w / k) = Delta_r: the paper's potential. ``core="linear"`` adds Adhesion's
+    own ``linearize_core()`` at its default r_ti = r_min / 2 = a0 / 2 (constant
+    repulsive pressure 84 E* below it): identical to ours wherever g >= a0 / 2, which
+    every converged state satisfies (the smallest gap is printed), but without it the
+    bare 9-3 wall changes sign at g = 0 and runs to -infinity for g < 0, where an
+    L-BFGS-B trial step can land (``core="bare"`` shows this).
+    """
+    from Adhesion.Interactions import LJ93
+
+    pot = LJ93(law.epsilon, law.sigma).spline_cutoff(gamma=law.work_of_adhesion)
+    if core == "linear":
+        pot = pot.linearize_core(r_ti=0.5 * law.equilibrium_distance)
+    return pot
+
+
+def check_potential(law, core: str = "linear") -> dict:
+    """Compare Adhesion's V, V', V'' with ours on gaps across core, well, tail."""
+    pot = adhesion_potential(law, core)
+    a0, dr = law.equilibrium_distance, law.range
+    g = np.concatenate([np.linspace(0.5 * a0, a0, 21), a0 + dr * np.linspace(0.0, 1.3, 27)])
+    v, dv, ddv = pot.evaluate(g, potential=True, gradient=True, curvature=True)
+    spline = pot.parent_potential if core == "linear" else pot
+
+    def energy(x):
+        return float(pot.evaluate(np.array([x]))[0][0])
+
+    return dict(
+        gaps=len(g),
+        gap_range=[float(g.min()), float(g.max())],
+        cutoff_adhesion=float(spline.cutoff_radius),
+        cutoff_rc=float(law.cutoff),
+        max_abs_energy_diff=float(np.abs(v - law.energy(g)).max()),
+        max_abs_pressure_diff=float(np.abs(-dv - law.pressure(g)).max()),
+        max_rel_curvature_diff=float(
+            np.abs(ddv - law.curvature(g)).max() / np.abs(law.curvature(g)).max()
+        ),
+        sample=[
+            (x, float(law.energy(np.array([x]))[0]), energy(x))
+            for x in (0.5 * a0, 0.8 * a0, a0, a0 + dr / 3, a0 + 0.9 * dr, a0 + 1.1 * dr)
+        ],
+    )
+
+
+# ------------------------------------------------------------------------------ codes
+# Each runs the whole approach once and returns one dict per step with: offset, seconds,
+# iterations, converged, residual (max force imbalance / E*, where defined),
+# repulsive_area, attractive_area, load (mean pressure / E*), plus the final fields.
+
+
+def run_roughcontact(h, law, offsets, tol, max_iter, **_) -> dict:
+    import roughcontact as rc
+
+    sub = rc.Substrate(h.shape, contact_modulus=ES, pixel_size=A0)
+    steps, prev = [], None
+    for d in offsets:
+        t0 = time.perf_counter()
+        res = rc.solve(h, sub, law, offset=float(d), initial=prev, tol=tol, max_iter=max_iter)
+        t = time.perf_counter() - t0
+        prev = res
+        steps.append(
+            dict(
+                offset=float(d),
+                seconds=t,
+                iterations=int(res.iterations),
+                evaluations=None,
+                converged=bool(res.converged),
+                residual=float(res.residual),
+                message=str(res.message),
+                repulsive_area=float(res.repulsive_area),
+                attractive_area=float(res.attractive_area),
+                load=float(res.load),
+                min_gap=float(np.min(res.gap)),
+            )
+        )
+    return dict(steps=steps, pressure=np.array(prev.pressure), gap=np.array(prev.gap))
+
+
+def run_adhesion(h, law, offsets, tol, max_iter, time_cap=math.inf, core="linear", **_) -> dict:
+    """Adhesion 0.93 SmoothContactSystem + scipy L-BFGS-B, warm-started.
+
+    Conventions: ContactMechanics' gap is ``u - h - offset_CM`` with u positive into the
+    substrate, ours ``d - h + w``; with a rigid uniform mode (mean u = 0, as our w)
+    u = w and offset_CM = -d. The substrate gets ``stiffness_q0=0`` (no energy in the
+    uniform mode) and the objective is evaluated at ``x - mean(x)`` with its gradient's
+    mean removed, so the minimisation runs over the same mean-free displacements as
+    ours (without it the uniform mode would be free or a spring, a different problem).
+    The gradient is the force imbalance per pixel (area a0^2 = 1), so L-BFGS-B's
+    ``gtol`` (max |g|) equals our residual times E* a0^2. ``ftol = 0`` so that it stops
+    on the gradient only (or the iteration cap, or a failed line search).
+    """
+    import scipy.optimize
+    from Adhesion.System import SmoothContactSystem
+    from ContactMechanics import PeriodicFFTElasticHalfSpace
+    from SurfaceTopography import Topography
+
+    n0, n1 = h.shape
+    size = (n0 * A0, n1 * A0)
+    sub = PeriodicFFTElasticHalfSpace((n0, n1), ES, physical_sizes=size, stiffness_q0=0.0)
+    topo = Topography(np.asarray(h, dtype=np.float64), physical_sizes=size)
+    system = SmoothContactSystem(sub, adhesion_potential(law, core), topo)
+    gtol = tol * ES * A0 * A0
+    x = np.zeros(n0 * n1)
+    steps = []
+    for d in offsets:
+        fun = system.objective(-float(d), gradient=True)
+
+        def objective(x, fun=fun):
+            e, g = fun(x - x.mean())
+            return e, g - g.mean()
+
+        t0 = time.perf_counter()
+
+        def stop_after_cap(intermediate_result, t0=t0):
+            if time.perf_counter() - t0 > time_cap:
+                raise StopIteration
+
+        with np.errstate(all="ignore"):
+            res = scipy.optimize.minimize(
+                objective,
+                x,
+                jac=True,
+                method="L-BFGS-B",
+                callback=stop_after_cap,
+                options=dict(gtol=gtol, ftol=0.0, maxiter=max_iter, maxfun=10 * max_iter),
+            )
+        t = time.perf_counter() - t0
+        x = np.asarray(res.x) - np.mean(res.x)
+        _, grad = objective(x)
+        residual = float(np.abs(grad).max()) / (ES * A0 * A0)
+        gap = np.asarray(system.gap).copy()
+        p_int = np.asarray(system.interaction_force) / (A0 * A0)  # pressure, > 0 repulsive
+        a0, dr = law.equilibrium_distance, law.range
+        capped = t > time_cap
+        steps.append(
+            dict(
+                offset=float(d),
+                seconds=t,
+                iterations=int(res.nit),
+                evaluations=int(res.nfev),
+                converged=residual <= tol,
+                residual=residual,
+                message=("time cap reached" if capped else str(res.message)),
+                repulsive_area=float(np.mean(gap < a0)),
+                attractive_area=float(np.mean((gap > a0) & (gap < a0 + dr))),
+                load=float(p_int.mean()),
+                min_gap=float(gap.min()),
+            )
+        )
+    return dict(steps=steps, pressure=p_int, gap=gap)
+
+
+def run_tamaas(h, law, offsets, tol, max_iter, **_) -> dict:
+    """tamaas 2.9 PolonskyKeerRey (gap primal, mean-gap constraint) + exponential adhesion.
+
+    Conventions as in hardwall.py (heights point at the body, no sign flip; E* = E with
+    nu = 0; ``model.displacement`` is the surface position, gap = displacement - h >= 0;
+    ``model.traction`` > 0 compressive). ``solve(target)`` imposes the mean gap.
+    """
+    import tamaas as tm
+
+    n0, n1 = h.shape
+    heights = np.ascontiguousarray(h, dtype=np.float64)
+    model = tm.ModelFactory.createModel(tm.model_type.basic_2d, [n0 * A0, n1 * A0], [n0, n1])
+    model.E = ES
+    model.nu = 0.0
+    solver = tm.PolonskyKeerRey(model, heights, tol, tm.PolonskyKeerRey.gap, tm.PolonskyKeerRey.gap)
+    solver.dump_freq = 10**9  # tamaas still logs the last iteration: parse it
+    solver.max_iter = max_iter
+    rho = 9.0 * law.range / 16.0
+    gamma = law.work_of_adhesion
+    adhesion = tm.ExponentialAdhesionFunctional(heights)
+    adhesion.parameters = {"rho": rho, "surface_energy": gamma}
+    solver.addFunctionalTerm(adhesion)
+    mean_h = float(np.mean(h))
+    steps = []
+    for d in offsets:
+        with capture_stderr_fd() as box:
+            t0 = time.perf_counter()
+            err = solver.solve(float(d) - mean_h - law.equilibrium_distance)
+            t = time.perf_counter() - t0
+        rows = [line.split() for line in box["text"].splitlines()]
+        counts = [int(r[0]) for r in rows if r and r[0].isdigit()]
+        traction = np.array(model.traction, copy=True)
+        gap = np.array(model.displacement, copy=True) - heights
+        free = gap > 0
+        # force imbalance off the hard wall in our measure (elastic minus adhesive traction)
+        imb = traction + gamma / rho * np.exp(-gap / rho)
+        residual = float(np.abs(imb[free] - imb[free].mean()).max()) / ES if free.any() else 0.0
+        steps.append(
+            dict(
+                offset=float(d),
+                seconds=t,
+                iterations=counts[-1] if counts else None,
+                evaluations=None,
+                converged=bool(err <= tol),
+                residual=residual,
+                own_error=float(err),
+                message="",
+                repulsive_area=float(np.mean(~free)),
+                attractive_area=float(np.mean(free)),
+                load=float(traction.mean()),
+                min_gap=float(gap.min()),
+            )
+        )
+    return dict(steps=steps, pressure=traction, gap=gap, rho=rho, surface_energy=gamma)
+
+
+RUNNERS = {"roughcontact": run_roughcontact, "adhesion": run_adhesion, "tamaas": run_tamaas}
+
+
+# ------------------------------------------------------------------------------ main
+def repeat(code, repeats, *args, **kwargs) -> dict:
+    """Run the approach ``repeats`` times; per-step times are the medians."""
+    outs = [RUNNERS[code](*args, **kwargs) for _ in range(repeats)]
+    out = outs[-1]
+    for i, step in enumerate(out["steps"]):
+        step["all_seconds"] = [o["steps"][i]["seconds"] for o in outs]
+        step["seconds"] = float(np.median(step["all_seconds"]))
+    return out
+
+
+def summarise(code, n, la, out, fft) -> dict:
+    steps = out["steps"]
+    t = np.array([s["seconds"] for s in steps])
+    its = [s["iterations"] for s in steps]
+    it_arr = np.array([i if i is not None else np.nan for i in its], dtype=float)
+    per_it = float(t.sum() / np.nansum(it_arr)) if np.nansum(it_arr) > 0 else float("nan")
+    last = steps[-1]
+    return dict(
+        code=code,
+        n=n,
+        adhesion_length=la,
+        seconds_per_step=float(np.median(t)),
+        seconds_total=float(t.sum()),
+        iterations_median=float(np.nanmedian(it_arr)),
+        iterations_max=float(np.nanmax(it_arr)),
+        iterations_total=float(np.nansum(it_arr)),
+        seconds_per_iteration=per_it,
+        fft_pair_seconds=fft,
+        iteration_over_fft=per_it / fft,
+        converged_steps=int(sum(s["converged"] for s in steps)),
+        steps=len(steps),
+        final_repulsive_area=last["repulsive_area"],
+        final_attractive_area=last["attractive_area"],
+        final_load=last["load"],
+        min_gap=float(min(s["min_gap"] for s in steps)),
+    )
+
+
+STEP_HEADER = (
+    f"  {'code':<13}{'step':>5}{'offset':>9}{'time[s]':>9}{'iters':>7}{'fev':>7}"
+    f"{'resid':>9}{'A_rep':>8}{'A_att':>8}{'load':>11}{'conv':>6}"
+)
+
+
+def format_step(code, k, s, ref=None) -> str:
+    line = (
+        f"  {code:<13}{k:>5}{s['offset']:>9.4f}{s['seconds']:>9.3f}"
+        f"{(s['iterations'] if s['iterations'] is not None else -1):>7}"
+        f"{(s['evaluations'] if s['evaluations'] is not None else '-'):>7}"
+        f"{s['residual']:>9.1e}{100 * s['repulsive_area']:>7.2f}%"
+        f"{100 * s['attractive_area']:>7.2f}%{s['load']:>11.3e}"
+        f"{('yes' if s['converged'] else 'NO'):>6}"
+    )
+    if ref is not None:
+        line += f"   dA_rep {s['dA_rep_pixels']:+d} px, dload {s['dload_rel']:+.1e}"
+    if s.get("own_error") is not None:
+        line += f"   own err {s['own_error']:.1e}"
+    if not s["converged"] and s.get("message"):
+        line += f"   ({s['message']})"
+    return line
+
+
+SUMMARY_HEADER = (
+    f"{'code':<13}{'n':>6}{'la':>7}{'t/step':>9}{'total':>9}{'it med':>8}{'it max':>8}"
+    f"{'ms/it':>9}{'fft[ms]':>9}{'it/fft':>8}{'Adh/rc':>8}{'tm/rc':>7}{'A_rep':>8}{'conv':>7}"
+)
+
+
+def format_summary(r) -> str:
+    sp = r.get("adhesion_over_roughcontact")
+    st = r.get("tamaas_over_roughcontact")
+    return (
+        f"{r['code']:<13}{r['n']:>6}{r['adhesion_length']:>7g}{r['seconds_per_step']:>9.3f}"
+        f"{r['seconds_total']:>9.2f}{r['iterations_median']:>8.0f}{r['iterations_max']:>8.0f}"
+        f"{1e3 * r['seconds_per_iteration']:>9.2f}{1e3 * r['fft_pair_seconds']:>9.2f}"
+        f"{r['iteration_over_fft']:>8.2f}{(f'{sp:.1f}x' if sp is not None else '-'):>8}"
+        f"{(f'{st:.1f}x' if st is not None else '-'):>7}"
+        f"{100 * r['final_repulsive_area']:>7.2f}%"
+        f"{r['converged_steps']:>4}/{r['steps']:<2}"
+    )
+
+
+def run(args, log=print) -> dict:
+    import roughcontact as rc
+
+    summaries, details, checks = [], [], []
+    for la in args.adhesion_lengths:
+        law = rc.SmoothLJ93.from_adhesion_length(la, contact_modulus=ES, pixel_size=A0)
+        if "adhesion" in args.peers:
+            with contextlib.suppress(ImportError):
+                chk = check_potential(law, args.adhesion_core)
+                chk["adhesion_length"] = la
+                checks.append(chk)
+                log(
+                    f"# potential check la={la:g} (k={law.stiffness:g}, Delta_r={law.range:.4f}, "
+                    f"w={law.work_of_adhesion:g}): Adhesion ({args.adhesion_core} core) vs "
+                    f"roughcontact on {chk['gaps']} gaps in [0.5 a0, a0 + 1.3 Delta_r]: "
+                    f"max |dV| {chk['max_abs_energy_diff']:.1e}, "
+                    f"max |dp| {chk['max_abs_pressure_diff']:.1e}, "
+                    f"max rel. dV'' {chk['max_rel_curvature_diff']:.1e}; cutoff "
+                    f"{chk['cutoff_adhesion']:.6f} vs {chk['cutoff_rc']:.6f}"
+                )
+                for g, v_rc, v_ad in chk["sample"]:
+                    log(f"#   V({g:.4f}) = {v_rc:+.6e} (rc)  {v_ad:+.6e} (Adhesion)")
+    for n in args.sizes:
+        h = surface(n, args.seed)
+        fft = fft_pair_seconds(n, args.fft_workers)
+        sched = approach_offsets(h, args.steps, args.end_load)
+        offsets = sched["offsets"]
+        log(
+            f"# n={n}: h_rms {np.std(h):.4f}, offsets {sched['d_start']:.4f} -> "
+            f"{sched['d_end']:.4f} in {args.steps} steps (hard-wall contact at the end "
+            f"load {100 * sched['hardwall_area']:.2f} %), FFT pair {1e3 * fft:.2f} ms"
+        )
+        for la in args.adhesion_lengths:
+            law = rc.SmoothLJ93.from_adhesion_length(la, contact_modulus=ES, pixel_size=A0)
+            results = {}
+            for code in ("roughcontact", *args.peers):
+                if code == "adhesion" and n > args.adhesion_max_size:
+                    log(
+                        f"# adhesion: skipped at n={n} > --adhesion-max-size "
+                        f"{args.adhesion_max_size} (L-BFGS-B takes very long here)"
+                    )
+                    continue
+                try:
+                    t0 = time.perf_counter()
+                    out = repeat(
+                        code,
+                        args.repeats if code == "roughcontact" else args.peer_repeats,
+                        h,
+                        law,
+                        offsets,
+                        args.tol,
+                        args.max_iter,
+                        time_cap=args.adhesion_time_cap,
+                        core=args.adhesion_core,
+                    )
+                    wall = time.perf_counter() - t0
+                except ImportError as exc:
+                    log(f"# {code}: not available ({exc}); skipped")
+                    continue
+                results[code] = out
+                log(f"# n={n} la={la:g} {code}: {wall:.1f} s wall")
+            ref = results.get("roughcontact")
+            log(STEP_HEADER)
+            for code, out in results.items():
+                for k, s in enumerate(out["steps"], 1):
+                    cmp = None
+                    if code == "adhesion" and ref is not None:
+                        r = ref["steps"][k - 1]
+                        d_area = s["repulsive_area"] - r["repulsive_area"]
+                        s["dA_rep_pixels"] = int(round(d_area * n * n))
+                        s["dload_rel"] = (s["load"] - r["load"]) / max(abs(r["load"]), 1e-300)
+                        cmp = r
+                    log(format_step(code, k, s, cmp))
+            rows = {c: summarise(c, n, la, o, fft) for c, o in results.items()}
+            if "adhesion" in rows and "roughcontact" in rows:
+                rows["roughcontact"]["adhesion_over_roughcontact"] = (
+                    rows["adhesion"]["seconds_per_step"] / rows["roughcontact"]["seconds_per_step"]
+                )
+                p, pa = ref["pressure"].ravel(), results["adhesion"]["pressure"].ravel()
+                rows["adhesion"]["final_pressure_rel_l2_vs_roughcontact"] = float(
+                    np.linalg.norm(pa - p) / np.linalg.norm(p)
+                )
+                log(
+                    f"# n={n} la={la:g}: Adhesion vs roughcontact at the last step: pressure "
+                    f"rel. L2 {rows['adhesion']['final_pressure_rel_l2_vs_roughcontact']:.1e}, "
+                    f"A_rep {100 * rows['adhesion']['final_repulsive_area']:.3f} % vs "
+                    f"{100 * rows['roughcontact']['final_repulsive_area']:.3f} %, load "
+                    f"{rows['adhesion']['final_load']:.4e} vs "
+                    f"{rows['roughcontact']['final_load']:.4e}"
+                    f"; smallest gap on the path {rows['adhesion']['min_gap']:.3f} vs "
+                    f"{rows['roughcontact']['min_gap']:.3f} a0"
+                )
+            if "tamaas" in rows and "roughcontact" in rows:
+                rows["roughcontact"]["tamaas_over_roughcontact"] = (
+                    rows["tamaas"]["seconds_per_step"] / rows["roughcontact"]["seconds_per_step"]
+                )
+                rows["tamaas"]["rho"] = results["tamaas"]["rho"]
+                rows["tamaas"]["surface_energy"] = results["tamaas"]["surface_energy"]
+            for code, out in results.items():
+                details.append(
+                    dict(
+                        code=code,
+                        n=n,
+                        adhesion_length=la,
+                        schedule=dict(
+                            d_start=sched["d_start"],
+                            d_end=sched["d_end"],
+                            hardwall_area=sched["hardwall_area"],
+                        ),
+                        steps=out["steps"],
+                    )
+                )
+            for r in rows.values():
+                summaries.append(r)
+    return dict(summary=summaries, details=details, potential_checks=checks)
+
+
+def targets(summary, log=print) -> dict:
+    """SPEC targets: >= 20x Adhesion per step; iterations(max n) <= 1.5 x iterations(256)."""
+    out = {}
+    ours = [r for r in summary if r["code"] == "roughcontact"]
+    for la in sorted({r["adhesion_length"] for r in ours}):
+        rs = sorted((r for r in ours if r["adhesion_length"] == la), key=lambda r: r["n"])
+        for r in rs:
+            sp = r.get("adhesion_over_roughcontact")
+            if sp is not None:
+                log(
+                    f"# target la={la:g} n={r['n']}: Adhesion/ours per step {sp:.1f}x "
+                    f"({'meets' if sp >= 20 else 'MISSES'} >= 20x)"
+                )
+                out[f"speedup_la{la:g}_n{r['n']}"] = sp
+        if len(rs) > 1:
+            ratio = rs[-1]["iterations_median"] / rs[0]["iterations_median"]
+            log(
+                f"# target la={la:g}: median iterations/step n={rs[-1]['n']} vs n={rs[0]['n']}: "
+                f"{rs[-1]['iterations_median']:.0f} / {rs[0]['iterations_median']:.0f} = "
+                f"{ratio:.2f} ({'meets' if ratio <= 1.5 else 'MISSES'} <= 1.5)"
+            )
+            out[f"iteration_growth_la{la:g}"] = ratio
+    for r in summary:
+        if r["converged_steps"] < r["steps"]:
+            log(
+                f"# NOT CONVERGED: {r['code']} n={r['n']} la={r['adhesion_length']:g}: "
+                f"{r['steps'] - r['converged_steps']} of {r['steps']} steps"
+            )
+    return out
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--sizes", type=int, nargs="+", default=[256, 512, 1024])
+    ap.add_argument("--adhesion-lengths", type=float, nargs="+", default=[0.005, 0.05])
+    ap.add_argument("--steps", type=int, default=10)
+    ap.add_argument("--tol", type=float, default=1e-6, help="max force imbalance / E*")
+    ap.add_argument("--peers", nargs="*", default=list(PEERS), choices=PEERS)
+    ap.add_argument("--max-iter", type=int, default=5000, help="iteration cap per step")
+    ap.add_argument(
+        "--end-load",
+        type=float,
+        default=5e-4,
+        help="mean pressure / E* of the hard-wall solve whose offset (+ a0) ends the approach",
+    )
+    ap.add_argument("--repeats", type=int, default=3, help="approaches timed for roughcontact")
+    ap.add_argument("--peer-repeats", type=int, default=1, help="approaches timed for peers")
+    ap.add_argument("--adhesion-max-size", type=int, default=512)
+    ap.add_argument(
+        "--adhesion-core",
+        choices=("linear", "bare"),
+        default="linear",
+        help="Adhesion's LJ93 core: linearize_core() below a0/2 (default) or the bare 9-3 wall",
+    )
+    ap.add_argument(
+        "--adhesion-time-cap", type=float, default=600.0, help="seconds per step for Adhesion"
+    )
+    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--fft-workers", type=int, default=n_cores())
+    ap.add_argument(
+        "--blas-threads",
+        type=int,
+        default=1,
+        help="BLAS threads (threadpoolctl); 1 keeps the peers' dot products sane on a busy machine",
+    )
+    ap.add_argument("--json", metavar="OUT", help="write all figures to this JSON file")
+    args = ap.parse_args(argv)
+
+    import scipy
+
+    import roughcontact
+
+    meta = dict(
+        machine=platform.machine(),
+        processor=platform.processor(),
+        cores=n_cores(),
+        python=platform.python_version(),
+        numpy=np.__version__,
+        scipy=scipy.__version__,
+        roughcontact=roughcontact.__version__,
+        options=vars(args),
+        surface=dict(hurst=0.8, rms_slope=0.1, short_cutoff=8, long_cutoff="n/2"),
+    )
+    with contextlib.suppress(Exception):
+        import subprocess
+
+        meta["git"] = subprocess.run(
+            ["git", "describe", "--always", "--dirty"],
+            capture_output=True,
+            text=True,
+            cwd=os.path.dirname(os.path.abspath(__file__)),
+        ).stdout.strip()
+    for dist in ("Adhesion", "ContactMechanics", "tamaas"):
+        with contextlib.suppress(metadata.PackageNotFoundError):
+            meta[dist] = metadata.version(dist)
+    print(
+        f"# adhesive approach, {args.steps} steps, tol {args.tol:g} (max force imbalance / E*), "
+        f"cap {args.max_iter} it/step, roughcontact median of {args.repeats}, peers "
+        f"{args.peer_repeats}; Adhesion up to n={args.adhesion_max_size}, "
+        f"{args.adhesion_time_cap:g} s/step cap; {meta['cores']} cores, FFT workers "
+        f"{args.fft_workers}, BLAS threads {args.blas_threads}",
+        flush=True,
+    )
+    # threadpoolctl limits only the libraries already loaded: load scipy's own OpenBLAS
+    # (L-BFGS-B) and the peers first
+    import scipy.optimize  # noqa: F401
+
+    for mod in ("Adhesion.System", "ContactMechanics", "tamaas"):
+        with contextlib.suppress(ImportError):
+            importlib.import_module(mod)
+    t0 = time.perf_counter()
+    with contextlib.ExitStack() as stack:
+        with contextlib.suppress(ImportError):
+            from threadpoolctl import threadpool_info, threadpool_limits
+
+            stack.enter_context(threadpool_limits(limits=args.blas_threads, user_api="blas"))
+            meta["threadpools"] = [
+                dict(api=i["internal_api"], threads=i["num_threads"], path=i["filepath"])
+                for i in threadpool_info()
+            ]
+        out = run(args, log=lambda s: print(s, flush=True))
+    print("# summary (t/step: median over the steps; Adh/rc, tm/rc: the peer's t/step / ours)")
+    print(SUMMARY_HEADER)
+    for r in out["summary"]:
+        print(format_summary(r))
+    out["targets"] = targets(out["summary"])
+    out["wall_seconds"] = time.perf_counter() - t0
+    print(f"# total wall time {out['wall_seconds']:.0f} s", flush=True)
+    if args.json:
+        with open(args.json, "w") as fh:
+            json.dump(dict(meta=meta, **out), fh, indent=2)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
