@@ -62,3 +62,46 @@ def heights2d(name: str, heights):
     if not bool(xp.all(xp.isfinite(heights))):
         raise ParameterError(f"{name} must be finite everywhere (found NaN or inf)")
     return heights
+
+
+def finite(name: str, value) -> float:
+    """Return ``float(value)`` if it is a finite real number, else raise ParameterError."""
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise ParameterError(f"{name} must be a finite real number, got {value!r}") from None
+    if not math.isfinite(v):
+        raise ParameterError(f"{name} must be a finite real number, got {value!r}")
+    return v
+
+
+def nonnegative_array(name: str, value):
+    """``value`` as a float array (or 0-d array) that is finite and >= 0."""
+    try:
+        v = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise ParameterError(f"{name} must be a number or array >= 0, got {value!r}") from None
+    if not np.all(np.isfinite(v)) or np.any(v < 0):
+        raise ParameterError(f"{name} must be finite and >= 0, got {value!r}")
+    return v
+
+
+def positive_array(name: str, value):
+    """``value`` as a float array (or 0-d array) that is finite and > 0."""
+    try:
+        v = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise ParameterError(f"{name} must be a positive number or array, got {value!r}") from None
+    if v.size == 0 or not np.all(np.isfinite(v)) or np.any(v <= 0):
+        raise ParameterError(f"{name} must be > 0 and finite, got {value!r}")
+    return v
+
+
+def json_ready(record) -> dict:
+    """A dataclass record as a JSON-ready dict: non-finite floats become ``None``."""
+    from dataclasses import asdict
+
+    return {
+        k: (None if isinstance(v, float) and not math.isfinite(v) else v)
+        for k, v in asdict(record).items()
+    }

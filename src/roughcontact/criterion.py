@@ -24,9 +24,9 @@ from __future__ import annotations
 
 import math
 import re
-from dataclasses import asdict, dataclass
+from dataclasses import dataclass
 
-from ._validate import ParameterError, positive
+from ._validate import ParameterError, json_ready, positive
 from .theory.pastewka_robbins import KAPPA_REP, STICKINESS_THRESHOLD, predict
 
 __all__ = ["DIMENSIONS", "StickinessCriterion", "parse_quantity", "stickiness_criterion"]
@@ -190,12 +190,7 @@ class StickinessCriterion:
 
     def to_dict(self) -> dict:
         """JSON-ready dict; non-finite numbers become ``None``."""
-        out = {}
-        for k, v in asdict(self).items():
-            if isinstance(v, float) and not math.isfinite(v):
-                v = None
-            out[k] = v
-        return out
+        return json_ready(self)
 
 
 def stickiness_criterion(

@@ -21,11 +21,11 @@ with its standard error. All areas and loads per :math:`A_0`; lengths in the pat
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass, field
+from dataclasses import dataclass, field
 
 import numpy as np
 
-from .._validate import ParameterError, in_range
+from .._validate import ParameterError, in_range, json_ready
 from .path import interpolate_at_area
 
 __all__ = ["PathAnalysis", "analyze_path", "load_path"]
@@ -94,12 +94,7 @@ class PathAnalysis:
 
     def to_dict(self) -> dict:
         """JSON-ready: non-finite numbers become None."""
-        out = {}
-        for k, v in asdict(self).items():
-            if isinstance(v, float) and not math.isfinite(v):
-                v = None
-            out[k] = v
-        return out
+        return json_ready(self)
 
 
 def load_path(path):

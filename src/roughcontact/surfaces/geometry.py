@@ -12,6 +12,7 @@ import math
 import numpy as np
 
 from .._validate import ParameterError, positive, shape2d
+from .._validate import finite as _finite
 
 __all__ = ["egg_box", "flat", "sinusoid", "sphere"]
 
@@ -20,16 +21,6 @@ def _coordinates(nx: int, ny: int, a: float):
     x = np.arange(nx, dtype=float)[:, None] * a
     y = np.arange(ny, dtype=float)[None, :] * a
     return x, y
-
-
-def _finite(name: str, value) -> float:
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise ParameterError(f"{name} must be a finite real number, got {value!r}") from None
-    if not math.isfinite(v):
-        raise ParameterError(f"{name} must be a finite real number, got {value!r}")
-    return v
 
 
 def _check_divides(name: str, wavelength: float, period: float, axis: int) -> None:

@@ -48,6 +48,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._validate import ParameterError, positive
+from .._validate import finite as _finite
+from .._validate import nonnegative_array as _nonnegative_array
 
 __all__ = [
     "JKRContact",
@@ -62,27 +64,6 @@ __all__ = [
     "jkr_pull_off_force",
     "jkr_zero_load_contact_radius",
 ]
-
-
-def _nonnegative_array(name: str, value):
-    """``value`` as a float array (or float) that is finite and >= 0, else ParameterError."""
-    try:
-        v = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
-        raise ParameterError(f"{name} must be a number or array >= 0, got {value!r}") from None
-    if not np.all(np.isfinite(v)) or np.any(v < 0):
-        raise ParameterError(f"{name} must be finite and >= 0, got {value!r}")
-    return v
-
-
-def _finite(name: str, value) -> float:
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise ParameterError(f"{name} must be a finite real number, got {value!r}") from None
-    if not math.isfinite(v):
-        raise ParameterError(f"{name} must be a finite real number, got {value!r}")
-    return v
 
 
 def _out(x):

@@ -51,11 +51,12 @@ condition fails.
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass
+from dataclasses import dataclass
 
 import numpy as np
 
-from .._validate import ParameterError, positive
+from .._validate import ParameterError, json_ready, positive
+from .._validate import positive_array as _pos
 
 __all__ = [
     "AREA_RATIO_PREFACTOR",
@@ -86,17 +87,6 @@ KAPPA_REP = 2.0
 #: ``c = (256/(9 pi^3))^(1/3) = 0.9717``: ``kappa_att >= c h'_rms a0/l_a`` if
 #: ``Delta_r = a0 <= delta_h`` (the necessary condition).
 NECESSARY_CONDITION_CONSTANT = (256.0 / (9.0 * math.pi**3)) ** (1.0 / 3.0)
-
-
-def _pos(name, value):
-    """``value`` as a float array (or float) that is finite and > 0, else ParameterError."""
-    try:
-        v = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
-        raise ParameterError(f"{name} must be a positive number or array, got {value!r}") from None
-    if v.size == 0 or not np.all(np.isfinite(v)) or np.any(v <= 0):
-        raise ParameterError(f"{name} must be > 0 and finite, got {value!r}")
-    return v
 
 
 def _out(x):
@@ -279,12 +269,7 @@ class PastewkaRobbinsPrediction:
 
     def to_dict(self) -> dict:
         """JSON-ready dict; non-finite numbers become ``None``."""
-        out = {}
-        for k, v in asdict(self).items():
-            if isinstance(v, float) and not math.isfinite(v):
-                v = None
-            out[k] = v
-        return out
+        return json_ready(self)
 
 
 def predict(

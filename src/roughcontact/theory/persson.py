@@ -41,6 +41,7 @@ import numpy as np
 from scipy.special import erf, erfinv
 
 from .._validate import ParameterError, positive
+from .._validate import nonnegative_array as _nonneg
 
 __all__ = [
     "BGT_KAPPA",
@@ -54,16 +55,6 @@ __all__ = [
 PERSSON_KAPPA = math.sqrt(8.0 / math.pi)
 #: Bush–Gibson–Thomas small-load prefactor ``sqrt(2 pi) = 2.507``.
 BGT_KAPPA = math.sqrt(2.0 * math.pi)
-
-
-def _nonneg(name, value):
-    try:
-        v = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
-        raise ParameterError(f"{name} must be a number or array >= 0, got {value!r}") from None
-    if not np.all(np.isfinite(v)) or np.any(v < 0):
-        raise ParameterError(f"{name} must be finite and >= 0, got {value!r}")
-    return v
 
 
 def _out(x):
