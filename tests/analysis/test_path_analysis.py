@@ -116,4 +116,3 @@ def test_weak_adhesion_leaves_the_repulsive_pressure_unchanged(surface):
     reference = analyze_path(adhesive_path(surface, 1e-7))
     weak = analyze_path(adhesive_path(surface, 0.0005))
     assert weak.repulsive_pressure == pytest.approx(reference.repulsive_pressure, rel=0.03)
-    assert reference.attractive_pressure_over_w_per_dr == pytest.approx(1.0, abs=0.12)
