@@ -17,6 +17,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from .._backend import array_namespace
+
 __all__ = ["GapLaw"]
 
 
@@ -47,4 +49,8 @@ class GapLaw:
 
 
 def as_gap(gap):
-    return np.asarray(gap, dtype=float)
+    """``(xp, g)``: the array namespace of ``gap`` and the gap as a float64 array of it."""
+    if not hasattr(gap, "__array_namespace__"):
+        gap = np.asarray(gap, dtype=float)
+    xp = array_namespace(gap)
+    return xp, xp.astype(gap, xp.float64) if gap.dtype != xp.float64 else gap

@@ -7,7 +7,7 @@ interaction of a half-space of 12-6 LJ atoms with a wall (Steele 1973). Its mini
 
 from __future__ import annotations
 
-import numpy as np
+from .._backend import array_namespace
 
 __all__ = ["SIGMA_OVER_A0", "lj93_terms", "lj93_with_core"]
 
@@ -35,7 +35,7 @@ def lj93_terms(g, epsilon: float, sigma: float):
 def lj93_with_core(g, epsilon: float, sigma: float, a0: float):
     """V_LJ and derivatives, continued below ``CORE_FRACTION * a0`` by a C2 quadratic."""
     g_min = CORE_FRACTION * a0
-    gc = np.maximum(g, g_min)
+    gc = array_namespace(g).maximum(g, g_min)
     v, dv, d2v = lj93_terms(gc, epsilon, sigma)
     below = g - gc  # < 0 only under g_min
     return v + dv * below + 0.5 * d2v * below**2, dv + d2v * below, d2v

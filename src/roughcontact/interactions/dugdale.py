@@ -17,8 +17,6 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-import numpy as np
-
 from .._validate import positive
 from ._base import GapLaw, as_gap
 
@@ -58,9 +56,11 @@ class MaugisDugdale(GapLaw):
         return self.range
 
     def _evaluate(self, gap):
-        g = np.maximum(as_gap(gap), 0.0)
+        xp, g = as_gap(gap)
+        g = xp.maximum(g, 0.0)
         inside = g < self.range
         s0 = self.cohesive_stress
-        v = np.where(inside, -self.work_of_adhesion + s0 * g, 0.0)
-        dv = np.where(inside, s0, 0.0)
-        return v, dv, np.zeros_like(g)
+        zero = xp.zeros_like(g)
+        v = xp.where(inside, -self.work_of_adhesion + s0 * g, zero)
+        dv = xp.where(inside, xp.full_like(g, s0), zero)
+        return v, dv, zero

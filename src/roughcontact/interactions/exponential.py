@@ -18,8 +18,6 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-import numpy as np
-
 from .._validate import positive
 from ._base import GapLaw, as_gap
 
@@ -66,16 +64,16 @@ class Exponential(GapLaw):
         return self.work_of_adhesion / self.range
 
     def _evaluate(self, gap):
-        g = as_gap(gap)
+        xp, g = as_gap(gap)
         w, rho = self.work_of_adhesion, self.range
         if self.core_stiffness is None:
-            g = np.maximum(g, 0.0)  # hard wall: the solver keeps g >= 0
-        e = np.exp(-np.maximum(g, 0.0) / rho)
+            g = xp.maximum(g, 0.0)  # hard wall: the solver keeps g >= 0
+        e = xp.exp(-xp.maximum(g, 0.0) / rho)
         v, dv, d2v = -w * e, (w / rho) * e, -(w / rho**2) * e
         if self.core_stiffness is not None:
             kc = self.core_stiffness
             inside = g < 0
-            v = np.where(inside, -w + (w / rho) * g + 0.5 * kc * g * g, v)
-            dv = np.where(inside, w / rho + kc * g, dv)
-            d2v = np.where(inside, kc, d2v)
+            v = xp.where(inside, -w + (w / rho) * g + 0.5 * kc * g * g, v)
+            dv = xp.where(inside, w / rho + kc * g, dv)
+            d2v = xp.where(inside, xp.full_like(g, kc), d2v)
         return v, dv, d2v

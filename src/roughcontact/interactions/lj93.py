@@ -76,10 +76,11 @@ class LennardJones93(GapLaw):
         return math.inf
 
     def _evaluate(self, gap):
-        return lj93_with_core(as_gap(gap), self.epsilon, self.sigma, self.equilibrium_distance)
+        g = as_gap(gap)[1]
+        return lj93_with_core(g, self.epsilon, self.sigma, self.equilibrium_distance)
 
     def classify(self, gap):
         """(repulsive, attractive): g < a0 and g > a0."""
-        g = as_gap(gap)
+        g = as_gap(gap)[1]
         a0 = self.equilibrium_distance
         return g < a0, g > a0

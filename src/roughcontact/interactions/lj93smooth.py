@@ -29,9 +29,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-import numpy as np
-
 from .._validate import ParameterError, positive
+from ._base import as_gap
 from ._lj93 import SIGMA_OVER_A0, curvature_at_minimum, lj93_terms, lj93_with_core
 
 __all__ = ["SmoothLJ93"]
@@ -138,19 +137,19 @@ class SmoothLJ93:
 
     # ---------------------------------------------------------------- evaluation
     def _evaluate(self, gap):
-        g = np.asarray(gap, dtype=float)
+        xp, g = as_gap(gap)
         a0, dr, w = self.equilibrium_distance, self.range, self.work_of_adhesion
-        v = np.zeros_like(g)
-        dv = np.zeros_like(g)
-        d2v = np.zeros_like(g)
+        v = xp.zeros_like(g)
+        dv = xp.zeros_like(g)
+        d2v = xp.zeros_like(g)
         core = g < a0
-        if core.any():
+        if xp.any(core):
             vc, dvc, d2vc = lj93_with_core(g[core], self.epsilon, self.sigma, a0)
             v[core] = vc - lj93_terms(a0, self.epsilon, self.sigma)[0] - w
             dv[core] = dvc
             d2v[core] = d2vc
         band = (g >= a0) & (g < a0 + dr)
-        if band.any():
+        if xp.any(band):
             x = (g[band] - a0) / dr
             m = 1.0 - x
             v[band] = -w * m**3 * (1.0 + 3.0 * x)
@@ -165,14 +164,14 @@ class SmoothLJ93:
     def pressure(self, gap):
         """p(g) = -V'(g) (pressure; > 0 repulsive)."""
         # the solvers' hot path: only V' on the core and the band, nothing else computed
-        g = np.asarray(gap, dtype=float)
+        xp, g = as_gap(gap)
         a0, dr, w = self.equilibrium_distance, self.range, self.work_of_adhesion
-        p = np.zeros_like(g)
+        p = xp.zeros_like(g)
         core = g < a0
-        if core.any():
+        if xp.any(core):
             p[core] = -lj93_with_core(g[core], self.epsilon, self.sigma, a0)[1]
         band = (g >= a0) & (g < a0 + dr)
-        if band.any():
+        if xp.any(band):
             x = (g[band] - a0) / dr
             p[band] = (-12.0 * w / dr) * x * (1.0 - x) ** 2
         return p
@@ -183,6 +182,6 @@ class SmoothLJ93:
 
     def classify(self, gap):
         """(repulsive, attractive) masks: g < a0, and a0 < g < a0 + Δr (SPEC §1)."""
-        g = np.asarray(gap)
+        g = as_gap(gap)[1]
         a0 = self.equilibrium_distance
         return g < a0, (g > a0) & (g < a0 + self.range)

@@ -1,0 +1,55 @@
+"""The backend-agnostic parts of the core run on array_api_strict arrays (CPU).
+
+array_api_strict implements only the array API standard, so any NumPy-only call that
+slipped into these functions fails here; results must equal the NumPy ones. (The
+solvers' inner loops are NumPy-only for now; see the GPU issue.)
+"""
+
+import numpy as np
+import pytest
+
+import roughcontact as rc
+
+xp = pytest.importorskip("array_api_strict")
+
+LAWS = [
+    rc.SmoothLJ93.from_adhesion_length(0.005),
+    rc.LennardJones93(work_of_adhesion=0.01),
+    rc.Exponential(work_of_adhesion=0.01, range=0.4),
+    rc.Exponential(work_of_adhesion=0.01, range=0.4, core_stiffness=2.0),
+    rc.MaugisDugdale(work_of_adhesion=0.01, range=0.4),
+]
+
+
+def strict(a):
+    return xp.asarray(np.asarray(a))
+
+
+@pytest.mark.parametrize("law", LAWS, ids=lambda law: law.name + str(law.hard_core))
+def test_interaction_laws(law):
+    g = np.linspace(-0.2, 2.0, 97)
+    for method in ("energy", "pressure", "curvature"):
+        got = getattr(law, method)(strict(g))
+        assert isinstance(got, type(strict(g)))
+        np.testing.assert_allclose(np.asarray(got), getattr(law, method)(g), rtol=1e-14)
+    rep, att = law.classify(strict(g))
+    np.testing.assert_array_equal(np.asarray(rep), law.classify(g)[0])
+    np.testing.assert_array_equal(np.asarray(att), law.classify(g)[1])
+
+
+@pytest.mark.parametrize("thickness", [None, 7.0])
+def test_substrate_operators(thickness):
+    sub = rc.Substrate((16, 12), thickness=thickness, poisson=0.3)
+    p = np.random.default_rng(0).normal(size=(16, 12))
+    w = sub.deflection(strict(p))
+    assert isinstance(w, type(strict(p)))
+    np.testing.assert_allclose(np.asarray(w), sub.deflection(p), rtol=1e-12, atol=1e-14)
+    np.testing.assert_allclose(
+        np.asarray(sub.pressure(w)), sub.pressure(sub.deflection(p)), rtol=1e-12, atol=1e-13
+    )
+    assert sub.energy(w) == pytest.approx(sub.energy(sub.deflection(p)), rel=1e-12)
+
+
+def test_statistics():
+    h = rc.self_affine((32, 24), hurst=0.8, rms_slope=0.1, short_cutoff=4, seed=3)
+    assert rc.statistics(strict(h)).to_dict() == pytest.approx(rc.statistics(h).to_dict())
