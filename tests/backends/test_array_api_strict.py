@@ -53,3 +53,20 @@ def test_substrate_operators(thickness):
 def test_statistics():
     h = rc.self_affine((32, 24), hurst=0.8, rms_slope=0.1, short_cutoff=4, seed=3)
     assert rc.statistics(strict(h)).to_dict() == pytest.approx(rc.statistics(h).to_dict())
+
+
+def test_smooth_solver_and_path():
+    h = rc.self_affine((32, 32), hurst=0.8, rms_slope=0.1, short_cutoff=4, seed=3)
+    sub = rc.Substrate((32, 32))
+    law = rc.SmoothLJ93.from_adhesion_length(0.005)
+    d = float(h.max()) + 0.6
+    ref = rc.solve(h, sub, law, offset=d, tol=1e-9)
+    got = rc.solve(strict(h), sub, law, offset=d, tol=1e-9)
+    assert got.converged and got.iterations == ref.iterations
+    np.testing.assert_allclose(got.pressure, ref.pressure, rtol=1e-9, atol=1e-12)
+    assert got.repulsive_area == ref.repulsive_area
+    offsets = d + np.array([0.4, 0.2, 0.0])
+    path = rc.approach_retract(strict(h), sub, law, offsets=offsets, tol=1e-8)
+    np.testing.assert_allclose(
+        path["load"], rc.approach_retract(h, sub, law, offsets=offsets, tol=1e-8)["load"]
+    )

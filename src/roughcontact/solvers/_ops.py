@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from .._backend import irfft2, rfft2
+from .._backend import array_namespace, irfft2, is_numpy_array, rfft2
 from .._validate import ParameterError, heights2d
 
 __all__ = [
@@ -19,13 +19,13 @@ __all__ = [
 
 
 def _fourier_operator(substrate, which: int):
-    multiplier = substrate._arrays(np.empty(0))[which]
     shape = substrate.shape
 
     def apply(x_flat):
-        xq = rfft2(x_flat.reshape(shape))
-        xq *= multiplier
-        return irfft2(xq, shape, overwrite_x=True).ravel()
+        xp = array_namespace(x_flat)
+        xq = rfft2(xp.reshape(x_flat, shape))
+        xq *= substrate._arrays(x_flat)[which]  # cached per backend
+        return xp.reshape(irfft2(xq, shape, overwrite_x=True), (-1,))
 
     return apply
 
@@ -41,14 +41,19 @@ def stiffness_operator(substrate):
 
 
 def dot(a, b) -> float:
-    # einsum: no temporary and no BLAS threads (which cost more than they save on a
-    # shared machine for vectors of this length)
-    return float(np.einsum("i,i->", a, b))
+    """Euclidean inner product of two flat arrays of one backend, as a Python float."""
+    if is_numpy_array(a):
+        # einsum: no temporary and no BLAS threads (which cost more than they save on a
+        # shared machine for vectors of this length)
+        return float(np.einsum("i,i->", a, b))
+    return float(array_namespace(a).sum(a * b))
 
 
 def check_problem(heights, substrate, tol, offset=None) -> np.ndarray:
     """Validate the common inputs; return the heights as a contiguous float64 array."""
-    h = np.ascontiguousarray(heights2d("heights", heights), dtype=float)
+    h = heights2d("heights", heights)
+    if is_numpy_array(h):
+        h = np.ascontiguousarray(h, dtype=float)
     if tuple(h.shape) != substrate.shape:
         raise ParameterError(
             f"heights shape {h.shape} differs from substrate shape {substrate.shape}"

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .._backend import to_numpy
 from ..analysis.contact_geometry import perimeter_edges
 from .result import ContactResult
 
@@ -24,7 +25,16 @@ def make_result(
     repulsive=None,
     attractive=None,
 ):
-    """Build the result record; ``repulsive``/``attractive`` masks default to p > 0 / none."""
+    """Build the result record; ``repulsive``/``attractive`` masks default to p > 0 / none.
+
+    Fields of any backend are copied to host NumPy here, once per solve (the record is
+    an edge: files, analysis, plots).
+    """
+    heights, pressure, deflection = (to_numpy(a) for a in (heights, pressure, deflection))
+    if repulsive is not None:
+        repulsive = to_numpy(repulsive)
+    if attractive is not None:
+        attractive = to_numpy(attractive)
     n = pressure.size
     gap = offset - heights + deflection
     if repulsive is None:

@@ -33,9 +33,7 @@ from __future__ import annotations
 import math
 import time
 
-import numpy as np
-
-from .._backend import irfft2, rfft2
+from .._backend import array_namespace, irfft2, rfft2, to_numpy
 from .._validate import ParameterError
 from ._ops import check_problem, stiffness_operator
 from ._ops import dot as _dot
@@ -49,8 +47,8 @@ def _local_pressure(interaction, gap):
     cutoff = interaction.cutoff
     if not math.isfinite(cutoff):
         return interaction.pressure(gap)
-    inside = np.flatnonzero(gap < cutoff)
-    p = np.zeros_like(gap)
+    inside = gap < cutoff
+    p = array_namespace(gap).zeros_like(gap)
     p[inside] = interaction.pressure(gap[inside])
     return p
 
@@ -100,24 +98,26 @@ def minimize_energy(
     n = h.size
     es = substrate.contact_modulus
     rigid = substrate.rigid_mean
+    xp = array_namespace(h)
     elastic_pressure = stiffness_operator(substrate)
-    stiffness = substrate._arrays(np.empty(0))[0]
+    stiffness = substrate._arrays(h)[0]
 
-    base = offset - h.ravel()  # gap = base + w
+    base = offset - xp.reshape(h, (-1,))  # gap = base + w
     if initial is not None:
-        w = np.array(getattr(initial, "deflection", initial), dtype=float).ravel()
-        if w.size != n:
+        w = getattr(initial, "deflection", initial)
+        w = xp.reshape(xp.asarray(w if xp is array_namespace(w) else to_numpy(w), copy=True), (-1,))
+        if w.shape[0] != n:
             raise ParameterError(f"initial must have the substrate's shape {substrate.shape}")
         if rigid:
-            w -= w.mean()
+            w -= xp.mean(w)
     else:
-        w = np.zeros(n)
+        w = xp.zeros(n, dtype=xp.float64)
     kw = elastic_pressure(w)
 
     def gradient(gap):
         gr = kw - _local_pressure(interaction, gap)
         if rigid:
-            gr -= gr.mean()  # the uniform mode is frozen: its force is the load
+            gr -= xp.mean(gr)  # the uniform mode is frozen: its force is the load
         return gr
 
     gap = base + w
@@ -127,7 +127,7 @@ def minimize_energy(
     gz_old = 1.0
     converged, message, residual, it = False, "iteration cap reached", math.inf, 0
     while True:
-        residual = max(float(gr.max()), -float(gr.min())) / es
+        residual = float(xp.max(xp.abs(gr))) / es
         if not math.isfinite(residual):
             message = f"non-finite state at iteration {it} (check inputs and the interaction)"
             break
@@ -149,7 +149,7 @@ def minimize_energy(
         beta = 0.0 if restart else max(0.0, (gz - _dot(gr, z_old)) / gz_old)  # PR+
         # K (K + kbar)^-1 = 1 - kbar (K + kbar)^-1 (the uniform mode of gr is projected
         # out when it is rigid), so K z = gr - kbar z needs no second convolution
-        kz = np.multiply(z, -kbar)
+        kz = z * (-kbar)
         kz += gr
         if beta > 0:  # in place: s = -z + beta s, ks = -K z + beta ks
             s *= beta
@@ -157,10 +157,10 @@ def minimize_energy(
             ks *= beta
             ks -= kz
         else:
-            s, ks = np.negative(z), np.negative(kz)
+            s, ks = -z, -kz
         slope0 = _dot(gr, s)
         if slope0 >= 0:  # not a descent direction: restart along the preconditioned -gr
-            s, ks = np.negative(z), np.negative(kz)
+            s, ks = -z, -kz
             slope0 = -gz
         z_old, gz_old = z, gz
         alpha = _line_minimum(interaction, gap, s, kw, ks, slope0)
@@ -171,7 +171,7 @@ def minimize_energy(
         kw += alpha * ks
         if it % 50 == 0:
             kw = elastic_pressure(w)  # remove round-off drift of the incremental update
-        np.add(base, w, out=gap)
+        gap = base + w
         gr = gradient(gap)
 
     kw = elastic_pressure(w)
@@ -181,8 +181,8 @@ def minimize_energy(
     return make_result(
         h,
         substrate,
-        p_int.reshape(shape),
-        w.reshape(shape),
+        xp.reshape(p_int, shape),
+        xp.reshape(w, shape),
         offset,
         it,
         residual,
@@ -191,30 +191,33 @@ def minimize_energy(
         tol,
         "preconditioned-cg",
         time.perf_counter() - t_start,
-        repulsive=rep.reshape(shape),
-        attractive=att.reshape(shape),
+        repulsive=xp.reshape(rep, shape),
+        attractive=xp.reshape(att, shape),
     )
 
 
 def _mean_site_stiffness(interaction, gap) -> float:
     """Mean over all sites of the interaction's stiffness V''(g), its negative part dropped."""
     cutoff = interaction.cutoff
+    xp = array_namespace(gap)
     g = gap[gap < cutoff] if math.isfinite(cutoff) else gap
-    return float(np.maximum(interaction.curvature(g), 0.0).sum()) / gap.size
+    return float(xp.sum(xp.maximum(interaction.curvature(g), 0.0))) / gap.shape[0]
 
 
 def _shifted_compliance(stiffness, kbar, shape, rigid):
     r"""x -> (K + \bar k)^{-1} x: the Green's function of the substrate on a uniform
     Winkler foundation of the sites' mean stiffness (rigid uniform mode kept rigid)."""
-    with np.errstate(divide="ignore"):
-        multiplier = 1.0 / (stiffness + kbar)
+    xp = array_namespace(stiffness)
+    denominator = stiffness + kbar
+    positive = denominator > 0
+    multiplier = xp.where(positive, 1.0 / xp.where(positive, denominator, 1.0), 0.0)
     if rigid:
         multiplier[0, 0] = 0.0
 
     def apply(x_flat):
-        xq = rfft2(x_flat.reshape(shape))
+        xq = rfft2(xp.reshape(x_flat, shape))
         xq *= multiplier
-        return irfft2(xq, shape, overwrite_x=True).ravel()
+        return xp.reshape(irfft2(xq, shape, overwrite_x=True), (-1,))
 
     return apply
 
@@ -227,33 +230,28 @@ def _line_minimum(interaction, gap, s, kw, ks, slope0, rtol=1e-3, max_eval=60):
     |phi'| <= rtol |phi'(0)|.
     """
     c0, c1 = _dot(s, kw), _dot(s, ks)
-    active = (
-        np.flatnonzero(np.minimum(gap, gap + 4.0 * s) < interaction.cutoff)
-        if math.isfinite(interaction.cutoff)
-        else None
-    )
+    xp = array_namespace(gap)
+    # sites that can feel the interaction for alpha <= 4; the others only matter beyond
+    band = math.isfinite(interaction.cutoff)
+    if band:
+        active = xp.minimum(gap, gap + 4.0 * s) < interaction.cutoff
+        sa, ga = s[active], gap[active]
+    else:
+        sa, ga = s, gap
 
     def slope(alpha):
-        if active is None:
-            return c0 + alpha * c1 - _dot(s, interaction.pressure(gap + alpha * s))
-        sa = s[active]
-        g = gap[active] + alpha * sa
-        # sites that leave the active band can only matter for alpha > 4
-        return c0 + alpha * c1 - _dot(sa, interaction.pressure(g))
+        return c0 + alpha * c1 - _dot(sa, interaction.pressure(ga + alpha * sa))
 
     lo, f_lo = 0.0, slope0
     # Newton guess with the curvature at alpha = 0
-    if active is None:
-        curv = c1 + _dot(s * s, interaction.curvature(gap))
-    else:
-        curv = c1 + _dot(s[active] ** 2, interaction.curvature(gap[active]))
+    curv = c1 + _dot(sa * sa, interaction.curvature(ga))
     hi = -slope0 / curv if curv > 0 else 1.0
     hi = min(max(hi, 1e-8), 4.0)
     f_hi = slope(hi)
     n_eval = 1
     while f_hi < 0 and n_eval < max_eval:
-        if hi >= 4.0 and active is not None:
-            active = None  # beyond the pre-selected band: use all sites
+        if hi >= 4.0 and band:
+            band, sa, ga = False, s, gap  # beyond the pre-selected band: use all sites
         lo, f_lo = hi, f_hi
         hi *= 2.0
         f_hi = slope(hi)
