@@ -70,3 +70,29 @@ def test_smooth_solver_and_path():
     np.testing.assert_allclose(
         path["load"], rc.approach_retract(h, sub, law, offsets=offsets, tol=1e-8)["load"]
     )
+
+
+@pytest.mark.parametrize(
+    "law",
+    [
+        rc.Exponential(work_of_adhesion=0.01, range=0.4),
+        rc.MaugisDugdale(work_of_adhesion=0.01, range=0.4),
+    ],
+    ids=lambda law: law.name,
+)
+def test_bounded_solver(law):
+    h = rc.sphere((32, 32), 20.0)
+    sub = rc.Substrate((32, 32))
+    ref = rc.solve(h, sub, law, offset=-0.4, tol=1e-10)
+    got = rc.solve(strict(h), sub, law, offset=-0.4, tol=1e-10)
+    assert got.converged and got.iterations == ref.iterations
+    np.testing.assert_allclose(got.pressure, ref.pressure, rtol=1e-9, atol=1e-12)
+
+
+def test_load_control():
+    h = rc.sphere((32, 32), 20.0)
+    sub = rc.Substrate((32, 32))
+    law = rc.Exponential(work_of_adhesion=0.01, range=0.4)
+    ref = rc.solve(h, sub, law, load=-2e-4, tol=1e-10)
+    got = rc.solve(strict(h), sub, law, load=-2e-4, tol=1e-10)
+    assert got.converged and got.offset == pytest.approx(ref.offset, abs=1e-9)

@@ -73,8 +73,9 @@ def check_hard_wall_offset(heights, substrate, offset) -> None:
     """
     if offset is None or not substrate.rigid_mean:
         return
-    mean = float(heights.mean())
-    if offset < mean - 1e-12 * (float(np.abs(heights).max()) + abs(offset)):
+    xp = array_namespace(heights)
+    mean = float(xp.mean(heights))
+    if offset < mean - 1e-12 * (float(xp.max(xp.abs(heights))) + abs(offset)):
         raise ParameterError(
             f"offset must be >= mean(heights) = {mean:g} for a hard wall on a substrate with "
             f"a rigid mean (got {offset:g}: the surfaces would overlap everywhere)"

@@ -35,8 +35,7 @@ from __future__ import annotations
 import math
 import time
 
-import numpy as np
-
+from .._backend import array_namespace, to_numpy
 from .._validate import ParameterError
 from ._ops import check_hard_wall_offset, check_problem, compliance_operator, stiffness_operator
 from ._ops import dot as _dot
@@ -53,19 +52,20 @@ def project_feasible(v, lower, zero_mean: bool):
     chosen so the mean vanishes: a root of a convex, piecewise-linear, nondecreasing
     function, found exactly by Newton's method in a few steps.
     """
+    xp = array_namespace(v)
     if not zero_mean:
-        return np.maximum(v, lower)
-    lam = -float(v.mean())
-    scale = float(np.abs(lower).sum()) + float(np.abs(v).sum()) + 1e-300
+        return xp.maximum(v, lower)
+    lam = -float(xp.mean(v))
+    scale = float(xp.sum(xp.abs(lower))) + float(xp.sum(xp.abs(v))) + 1e-300
     for _ in range(200):
-        u = np.maximum(v + lam, lower)
-        f = float(u.sum())
+        u = xp.maximum(v + lam, lower)
+        f = float(xp.sum(u))
         if abs(f) <= 1e-13 * scale:
             break
         free = v + lam > lower
-        count = int(np.count_nonzero(free))
+        count = int(xp.count_nonzero(free))
         if count == 0:  # everything clipped: move to the first breakpoint
-            lam = float((lower - v).max())
+            lam = float(xp.max(lower - v))
             continue
         lam -= f / count
     return u
@@ -112,32 +112,35 @@ def minimize_energy_bounded(
     shape, n = h.shape, h.size
     es = substrate.contact_modulus
     rigid = substrate.rigid_mean
-    hf = h.ravel()
+    xp = array_namespace(h)
+    hf = xp.reshape(h, (-1,))
     base = offset - hf  # gap = base + w
     lower = -base
     check_hard_wall_offset(h, substrate, offset)
     green = compliance_operator(substrate)
     stiff = stiffness_operator(substrate)
-    scale = float(np.std(hf)) or substrate.pixel_size
+    scale = float(xp.std(hf)) or substrate.pixel_size
     on_wall_tol = 1e-12 * scale
 
     if initial is not None:
-        w0 = np.array(getattr(initial, "deflection", initial), dtype=float).ravel()
+        w0 = getattr(initial, "deflection", initial)
+        w0 = xp.asarray(w0 if xp is array_namespace(w0) else to_numpy(w0), copy=True)
+        w0 = xp.reshape(xp.astype(w0, xp.float64), (-1,))
         if w0.size != n:
             raise ParameterError(f"initial must have the substrate's shape {substrate.shape}")
     else:
-        w0 = np.zeros(n)
-    w = project_feasible(w0 - w0.mean() if rigid else w0, lower, rigid)
+        w0 = xp.zeros(n, dtype=xp.float64)
+    w = project_feasible(w0 - xp.mean(w0) if rigid else w0, lower, rigid)
     kw = stiff(w)
 
     def energy(w_, kw_):
-        return 0.5 * _dot(w_, kw_) + float(interaction.energy(base + w_).sum())
+        return 0.5 * _dot(w_, kw_) + float(xp.sum(interaction.energy(base + w_)))
 
     e_cur = energy(w, kw)
     s = ks = z_old = None
     gz_old, active_old = 1.0, None
     converged, message, residual, it, mu = False, "iteration cap reached", math.inf, 0, 0.0
-    free = np.ones(n, dtype=bool)
+    free = xp.ones(n, dtype=xp.bool)
     while True:
         gap = base + w
         p_int = interaction.pressure(gap)
@@ -145,17 +148,17 @@ def minimize_energy_bounded(
         on_wall = gap <= on_wall_tol
         if rigid:
             away = ~on_wall
-            mu = float(r[away].mean()) if away.any() else float(r.mean())
+            mu = float(xp.mean(r[away])) if xp.any(away) else float(xp.mean(r))
         active = on_wall & (r - mu > 0)
         free = ~active
         if rigid:
-            mu = float(r[free].mean()) if free.any() else mu
-        rr = np.where(free, r - mu, 0.0)
-        residual = float(np.abs(rr).max()) / es
+            mu = float(xp.mean(r[free])) if xp.any(free) else mu
+        rr = xp.where(free, r - mu, 0.0)
+        residual = float(xp.max(xp.abs(rr))) / es
         if not math.isfinite(residual):
             message = f"non-finite state at iteration {it} (check inputs and the interaction)"
             break
-        if residual <= tol or not free.any():
+        if residual <= tol or not xp.any(free):
             converged, message = True, "converged"
             break
         if it >= max_iter:
@@ -164,15 +167,15 @@ def minimize_energy_bounded(
             message = "stopped by callback"
             break
         it += 1
-        z = np.where(free, green(rr), 0.0)
+        z = xp.where(free, green(rr), 0.0)
         if rigid:
-            z[free] -= z[free].mean()
+            z = xp.where(free, z - xp.mean(z[free]), 0.0)
         gz = _dot(rr, z)
         restart = (
             s is None
             or it % restart_every == 0
             or active_old is None
-            or not np.array_equal(active, active_old)
+            or bool(xp.any(active != active_old))
         )
         beta = 0.0 if restart else max(0.0, (gz - _dot(rr, z_old)) / gz_old)  # PR+
         s = -z + beta * s if beta > 0 else -z
@@ -186,7 +189,7 @@ def minimize_energy_bounded(
             message = f"line search failed at iteration {it}"
             break
         crossing = s < 0
-        alpha_max = float((-gap[crossing] / s[crossing]).min()) if crossing.any() else math.inf
+        alpha_max = float(xp.min(-gap[crossing] / s[crossing])) if xp.any(crossing) else math.inf
         if alpha <= alpha_max:
             w += alpha * s
             kw += alpha * ks
@@ -206,7 +209,7 @@ def minimize_energy_bounded(
             if alpha_max <= 0:
                 message = f"no descent along the projected direction at iteration {it}"
                 break
-            w_try = np.maximum(w + alpha_max * s, lower)  # largest feasible step
+            w_try = xp.maximum(w + alpha_max * s, lower)  # largest feasible step
             kw_try = stiff(w_try)
             e_try = energy(w_try, kw_try)
         w, kw, e_cur = w_try, kw_try, e_try
@@ -214,12 +217,12 @@ def minimize_energy_bounded(
 
     gap = base + w
     p_int = interaction.pressure(gap)
-    traction = np.where(free, p_int, kw - mu)
+    traction = xp.where(free, p_int, kw - mu)
     return make_result(
         h,
         substrate,
-        traction.reshape(shape),
-        w.reshape(shape),
+        xp.reshape(traction, shape),
+        xp.reshape(w, shape),
         offset,
         it,
         residual,
@@ -228,6 +231,6 @@ def minimize_energy_bounded(
         tol,
         "bounded-cg",
         time.perf_counter() - t_start,
-        repulsive=(traction > 0).reshape(shape),
-        attractive=(traction < 0).reshape(shape),
+        repulsive=xp.reshape(traction > 0, shape),
+        attractive=xp.reshape(traction < 0, shape),
     )

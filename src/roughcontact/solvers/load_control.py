@@ -23,6 +23,8 @@ import time
 
 import numpy as np
 
+from .._backend import array_namespace
+
 __all__ = ["solve_at_load"]
 
 
@@ -33,8 +35,9 @@ def solve_at_load(
     t0 = time.perf_counter()
     load = float(load)
     load_tol = tol * substrate.contact_modulus
-    h = np.asarray(heights, dtype=float)
-    scale = max(float(np.std(h)), substrate.pixel_size)
+    h = heights if hasattr(heights, "__array_namespace__") else np.asarray(heights, float)
+    xp = array_namespace(h)
+    scale = max(float(xp.std(h)), substrate.pixel_size)
     states: dict[float, object] = {}
     total = {"it": 0}
 
@@ -61,7 +64,7 @@ def solve_at_load(
     if initial is not None and hasattr(initial, "offset"):
         d_a = float(initial.offset)
     else:
-        d_a = float(h.max()) + getattr(interaction, "equilibrium_distance", 0.0)
+        d_a = float(xp.max(h)) + getattr(interaction, "equilibrium_distance", 0.0)
     res_a = evaluate(d_a)
     f_a = res_a.load - load
     if not res_a.converged or abs(f_a) <= load_tol:
