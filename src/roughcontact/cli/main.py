@@ -475,9 +475,13 @@ def demo(size, seed, as_json):
 def _register_commands():
     from .analyze import analyze
     from .criterion import criterion
+    from .figures import figures
+    from .study import study
 
     main.add_command(analyze)
     main.add_command(criterion)
+    main.add_command(figures)
+    main.add_command(study)
 
 
 _register_commands()

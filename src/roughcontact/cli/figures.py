@@ -1,0 +1,94 @@
+"""``roughcontact figures DIR -o FIGDIR``: the paper's Figs. 1-4 from a study."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import click
+
+from .._validate import ParameterError
+
+
+def _load(source: Path):
+    """(collected dataset, contact-map paths) of a study directory or a collected .nc."""
+    if source.is_dir():
+        try:
+            from ..studies.collect import collect_study
+        except ImportError:  # pragma: no cover - studies without the collector
+            raise ParameterError(
+                f"{str(source)!r} is a directory but this roughcontact cannot collect "
+                "studies; pass a collected .nc file"
+            ) from None
+        from ..plot import study_maps
+
+        return collect_study(source), study_maps(source)
+    import xarray as xr
+
+    try:
+        ds = xr.load_dataset(source, engine="h5netcdf")
+    except (OSError, ValueError) as err:
+        raise ParameterError(
+            f"{str(source)!r} is neither a study directory nor a readable NetCDF file: {err}"
+        ) from None
+    if "task" not in ds.dims:
+        raise ParameterError(
+            f"{str(source)!r} is not a collected study (no 'task' dimension); make one with "
+            "'roughcontact study collect DIR -o OUT.nc'"
+        )
+    return ds, []
+
+
+@click.command("figures")
+@click.argument("source", metavar="DIR", type=click.Path(exists=True, path_type=Path))
+@click.option(
+    "-o",
+    "--output",
+    "out_dir",
+    required=True,
+    type=click.Path(file_okay=False),
+    help="Directory for the figure files (created).",
+)
+@click.option(
+    "--format",
+    "formats",
+    multiple=True,
+    default=("png", "pdf"),
+    show_default=True,
+    type=click.Choice(["png", "pdf", "svg"]),
+    help="File format (repeatable).",
+)
+@click.option(
+    "--target-area",
+    type=float,
+    default=0.02,
+    show_default=True,
+    help="A_rep/A0 of the contact maps of Fig. 1.",
+)
+@click.option("--dpi", type=int, default=150, show_default=True, help="PNG resolution.")
+def figures(source, out_dir, formats, target_area, dpi):
+    """Draw the paper's figures from DIR, a study directory or a collected .nc file.
+
+    Fig. 2 (area against load with the fits of κ), Fig. 3 (collapse plots) and Fig. 4
+    (κ_att and A_rep/A_att against Eqs. 6-7) from the collected study; Fig. 1 (contact
+    maps) when DIR is a study directory whose task files hold fields ([output] fields_at).
+    """
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from ..plot import save_figures
+
+    ds, maps = _load(source)
+    written = save_figures(ds, out_dir, formats, maps=maps, dpi=dpi, target_area=target_area)
+    for paths in written.values():
+        for path in paths:
+            click.echo(str(path))
+    if "fig1_contact_maps" not in written:
+        click.echo(
+            "note: Fig. 1 (contact maps) not made: "
+            + (
+                "no task file holds pressure/gap fields (set [output] fields_at = [...])"
+                if source.is_dir()
+                else "a collected .nc holds no contact maps; pass the study directory"
+            ),
+            err=True,
+        )

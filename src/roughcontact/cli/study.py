@@ -1,0 +1,86 @@
+"""``roughcontact study run|collect``: parameter studies on Dask, one combined NetCDF."""
+
+from __future__ import annotations
+
+import sys
+
+import click
+
+EXIT_TASKS_FAILED = 1
+
+
+@click.group("study")
+def study():
+    """Run a parameter study (TOML) on Dask and collect its results."""
+
+
+@study.command("run")
+@click.argument("study_file", metavar="STUDY.toml", type=click.Path(dir_okay=False))
+@click.option(
+    "-o",
+    "--output",
+    "out_dir",
+    type=click.Path(file_okay=False),
+    required=True,
+    help="Study directory: one NetCDF file per task, the manifest, failure records.",
+)
+@click.option("--resume", is_flag=True, help="Continue a study: skip finished tasks.")
+@click.option(
+    "--scheduler",
+    default=None,
+    metavar="ADDRESS",
+    help="Run on an existing Dask cluster (tcp://host:8786) instead of a local one.",
+)
+@click.option(
+    "--workers",
+    type=int,
+    default=None,
+    help="Worker processes of the local cluster (default: the CPU cores).",
+)
+@click.option("--no-progress", is_flag=True, help="No progress bar.")
+def run(study_file, out_dir, resume, scheduler, workers, no_progress):
+    """Run every task of STUDY.toml; store each result in the -o directory as it finishes.
+
+    Exit code 0 when all tasks finished (steps that did not converge are reported in
+    the summary, not counted as failures), 1 if any task failed, 2 on bad input.
+    """
+    from ..studies import load_study, run_study
+
+    spec = load_study(study_file)  # validated before anything starts
+    if not no_progress:
+        click.echo(f"study {spec.name!r}: {len(spec.tasks)} tasks -> {out_dir}", err=True)
+    summary = run_study(
+        spec,
+        out_dir,
+        resume=resume,
+        scheduler=scheduler,
+        workers=workers,
+        progress=not no_progress,
+    )
+    click.echo(str(summary))
+    if not summary.ok:
+        sys.exit(EXIT_TASKS_FAILED)
+
+
+@study.command("collect")
+@click.argument("out_dir", metavar="DIR", type=click.Path(file_okay=False))
+@click.option(
+    "-o",
+    "--output",
+    type=click.Path(dir_okay=False),
+    required=True,
+    help="NetCDF file for the combined dataset (task x step).",
+)
+@click.option("--no-timings", is_flag=True, help="Leave out wall-clock times (reproducible files).")
+def collect(out_dir, output, no_timings):
+    """Combine the task files of study directory DIR into one NetCDF file."""
+    from ..studies import collect_study
+    from ..studies.store import atomic_write
+
+    ds = collect_study(out_dir, include_timings=not no_timings)
+    atomic_write(output, lambda tmp: ds.to_netcdf(tmp, engine="h5netcdf"))
+    click.echo(
+        f"{ds.sizes['task']} tasks ({ds.attrs['tasks_done']} done, "
+        f"{ds.attrs['tasks_failed']} failed, {ds.attrs['tasks_missing']} missing), "
+        f"{ds.sizes['step']} steps -> {output}"
+    )

@@ -1,0 +1,48 @@
+"""Axes helpers of the figures: a pyplot-free Figure, log axes over whole decades."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+
+def figure(width, height):
+    from matplotlib.figure import Figure
+
+    return Figure(figsize=(width, height), layout="constrained")
+
+
+def decades(*arrays):
+    """Whole decades around the positive finite values of ``arrays`` (log-axis limits)."""
+    v = np.concatenate([np.ravel(np.asarray(a, dtype=float)) for a in arrays])
+    v = v[np.isfinite(v) & (v > 0)]
+    if v.size == 0:
+        return 0.1, 10.0
+    lo, hi = math.floor(math.log10(v.min())), math.ceil(math.log10(v.max()))
+    return 10.0**lo, 10.0 ** max(hi, lo + 1)
+
+
+def log_axes(ax, xlim, ylim):
+    from matplotlib.ticker import NullFormatter
+
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlim(*xlim)
+    ax.set_ylim(*ylim)
+    for axis in (ax.xaxis, ax.yaxis):
+        axis.set_minor_formatter(NullFormatter())
+
+
+def loglog(ax, xs, ys, slope=1.0, label=None):
+    """Log axes over the data and the line y = slope·x across them (``gid="theory"``)."""
+    x = np.concatenate([np.ravel(v) for v in xs]) if xs else np.zeros(0)
+    y = np.concatenate([np.ravel(v) for v in ys]) if ys else np.zeros(0)
+    if x.size == 0:
+        log_axes(ax, (0.1, 10.0), (0.1, 10.0))
+        ax.text(0.5, 0.5, "no data", transform=ax.transAxes, ha="center", color="0.5")
+        return
+    xlim = decades(x, y / slope)
+    log_axes(ax, xlim, decades(y, slope * np.array(xlim)))
+    line = np.geomspace(*xlim, 50)
+    ax.plot(line, slope * line, "-", color="0.4", lw=1, gid="theory", label=label, zorder=0)

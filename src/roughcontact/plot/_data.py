@@ -1,0 +1,234 @@
+"""Reading a collected study dataset for the figures, and the paper's symbol code.
+
+The dataset is the one of :func:`roughcontact.studies.collect_study`: dimension ``task``
+(parameters as coordinates), per-task analysis scalars, per-step curves along ``step``
+(padded with NaN / ""). Nothing here imports matplotlib at module level.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+
+from .._validate import ParameterError
+
+#: Parameters that describe one surface realisation and its substrate (Fig. 2 picks one).
+SURFACE_KEYS = (
+    "size",
+    "pixel_size",
+    "hurst",
+    "rms_slope",
+    "rms_height",
+    "short_cutoff",
+    "long_cutoff",
+    "rolloff",
+    "contact_modulus",
+    "thickness",
+    "poisson",
+    "base",
+    "seed",
+)
+#: Parameters of the interaction (what varies between the curves of Fig. 2 and maps of Fig. 1).
+ADHESION_KEYS = (
+    "law",
+    "adhesion_length",
+    "work_of_adhesion",
+    "range",
+    "stiffness",
+    "core_stiffness",
+)
+#: Short names of the parameters in titles.
+LABELS = {"hurst": "H", "rms_slope": "h′rms", "short_cutoff": "λs/a0", "size": "n", "seed": "seed"}
+# alternatives, first found wins: the measured slope is what the analysis normalised with
+SLOPE = ("measured_rms_slope", "rms_slope")
+ADHESION = ("adhesion_length", "work_of_adhesion")
+D_REP = {"measured": ("d_rep",), "predicted": ("predicted_d_rep", "d_rep_predicted")}
+PAPER_MARKERS = {0.3: "^", 0.5: "s", 0.8: "o"}  # triangles, squares, circles (Figs. 3-4)
+OTHER_MARKERS = ("D", "v", "p", "h", "<", ">", "*")
+# ℓa/a0 = 0.0005, 0.005, 0.05 are black, blue, red in the paper: colours by rank of ℓa
+COLOURS = (
+    "black",
+    "tab:blue",
+    "tab:red",
+    "tab:green",
+    "tab:purple",
+    "tab:orange",
+    "tab:brown",
+    "tab:olive",
+)
+NON_ADHESIVE = "0.55"
+
+
+def _has(ds, name) -> bool:
+    return name in ds.variables
+
+
+def require(ds, needs, figure: str) -> None:
+    """Raise :class:`ParameterError` naming every variable of ``needs`` the dataset lacks.
+
+    ``needs`` holds names or tuples of alternative names.
+    """
+    if not hasattr(ds, "variables") or "task" not in getattr(ds, "dims", {}):
+        raise ParameterError(
+            f"{figure} needs a collected study dataset (an xarray.Dataset with a 'task' "
+            f"dimension, from roughcontact.studies.collect_study), got {type(ds).__name__}"
+        )
+    missing = []
+    for need in needs:
+        names = (need,) if isinstance(need, str) else tuple(need)
+        if not any(_has(ds, n) for n in names):
+            missing.append(" or ".join(names))
+    if missing:
+        raise ParameterError(
+            f"{figure}: the dataset lacks " + ", ".join(missing) + " (collect the study "
+            "with 'roughcontact study collect DIR -o OUT.nc')"
+        )
+
+
+def values(ds, names) -> np.ndarray:
+    """Float values on ``task`` of the first of ``names`` present, NaNs filled from the next."""
+    names = (names,) if isinstance(names, str) else names
+    found = [np.asarray(ds[n].values, dtype=float).reshape(-1) for n in names if _has(ds, n)]
+    if not found:
+        raise ParameterError("the dataset lacks " + " or ".join(names))
+    out = found[0].copy()
+    for more in found[1:]:
+        out = np.where(np.isnan(out), more, out)
+    return out
+
+
+def adhesion_length(ds) -> np.ndarray:
+    """ℓa = w/E* per task (NaN for non-adhesive tasks)."""
+    if _has(ds, "adhesion_length"):
+        return values(ds, "adhesion_length")
+    return values(ds, "work_of_adhesion") / values(ds, "contact_modulus")
+
+
+def usable(ds) -> np.ndarray:
+    """Indices of the tasks that finished (``failed`` False, when the variable exists)."""
+    n = ds.sizes["task"]
+    if _has(ds, "failed"):
+        return np.flatnonzero(~np.asarray(ds["failed"].values, dtype=bool))
+    return np.arange(n)
+
+
+def fit_max_area(ds, given=None) -> float:
+    """The ``fit_max_area`` of the study's analysis (default 0.05) unless ``given``."""
+    if given is not None:
+        return float(given)
+    try:
+        return float(json.loads(ds.attrs.get("study_settings", "{}"))["analysis"]["fit_max_area"])
+    except (KeyError, TypeError, ValueError):
+        return 0.05
+
+
+def curves(ds, i, names, *, branch="approach", converged_only=False) -> dict:
+    """Per-step arrays of task ``i`` on ``branch``, steps with any non-finite value dropped."""
+    keep = np.asarray(ds["branch"].values[i]) == branch
+    if converged_only and _has(ds, "converged"):
+        keep &= np.asarray(ds["converged"].values[i], dtype=bool)
+    out = {n: np.asarray(ds[n].values[i], dtype=float)[keep] for n in names}
+    finite = np.all([np.isfinite(v) for v in out.values()], axis=0) if out else keep
+    return {n: v[finite] for n, v in out.items()}
+
+
+def same(a, b) -> bool:
+    """Equality of two coordinate values, NaN equal to NaN."""
+    try:
+        fa, fb = float(a), float(b)
+    except (TypeError, ValueError):
+        return a == b
+    return fa == fb or (math.isnan(fa) and math.isnan(fb))
+
+
+def la_label(la: float) -> str:
+    return "non-adhesive" if not math.isfinite(la) or la <= 0 else f"ℓa/a0 = {la:g}"
+
+
+class TaskStyle:
+    """The paper's symbols: marker by H, colour by ℓa/a0, filled/open by h'rms, size by λs.
+
+    Values the paper used get its symbols (H = 0.3, 0.5, 0.8: triangle, square, circle;
+    the smallest, middle, largest ℓa black, blue, red; the smallest h'rms filled); other
+    values get the next symbols in order. Sizes grow with the rank of λs.
+    """
+
+    def __init__(self, ds):
+        self.hurst = values(ds, "hurst") if _has(ds, "hurst") else np.full(ds.sizes["task"], 0.8)
+        a0 = values(ds, "pixel_size") if _has(ds, "pixel_size") else 1.0
+        self.la = adhesion_length(ds) / a0  # ℓa/a0, the paper's parameter
+        self.slope = values(ds, "rms_slope")
+        self.cutoff = values(ds, "short_cutoff") if _has(ds, "short_cutoff") else self.slope * 0
+        use = usable(ds)
+        self._h = _unique(self.hurst[use])
+        self._la = _unique(self.la[use][np.isfinite(self.la[use]) & (self.la[use] > 0)])
+        self._s = _unique(self.slope[use])
+        self._c = _unique(self.cutoff[use])
+        extra = iter(OTHER_MARKERS * 4)
+        self._markers = {h: PAPER_MARKERS.get(round(h, 6)) or next(extra) for h in self._h}
+
+    def colour(self, la) -> str:
+        if not math.isfinite(la) or la <= 0:
+            return NON_ADHESIVE
+        return COLOURS[_rank(self._la, la) % len(COLOURS)]
+
+    def __call__(self, i) -> dict:
+        """``Axes.plot`` keywords of task ``i`` (markers only)."""
+        colour = self.colour(self.la[i])
+        filled = _rank(self._s, self.slope[i]) == 0
+        return {
+            "marker": self._markers.get(self.hurst[i], "o"),
+            "color": colour,
+            "markeredgecolor": colour,
+            "markerfacecolor": colour if filled else "none",
+            "markersize": 4.0 + 1.5 * _rank(self._c, self.cutoff[i]),
+            "linestyle": "none",
+        }
+
+    def legend_handles(self):
+        """Proxy artists explaining the symbol code."""
+        from matplotlib.lines import Line2D
+
+        def proxy(label, **kw):
+            kw = {"marker": "o", "color": "0.3", "markersize": 6, "linestyle": "none", **kw}
+            return Line2D([], [], label=label, **kw)
+
+        handles = [proxy(f"H = {h:g}", marker=self._markers[h]) for h in self._h]
+        handles += [proxy(la_label(la), color=self.colour(la)) for la in self._la]
+        if np.any(~(self.la > 0)):
+            handles.append(proxy("non-adhesive", color=NON_ADHESIVE))
+        handles += [
+            proxy(f"h'rms = {s:g}", markerfacecolor="0.3" if k == 0 else "none")
+            for k, s in enumerate(self._s)
+        ]
+        handles += [
+            proxy(f"λs/a0 = {c:g}", markersize=4.0 + 1.5 * k) for k, c in enumerate(self._c)
+        ]
+        return handles
+
+
+def _unique(a) -> list:
+    a = np.asarray(a, dtype=float)
+    return sorted(set(a[np.isfinite(a)].tolist()))
+
+
+def _rank(levels, v) -> int:
+    return levels.index(v) if v in levels else 0
+
+
+def select_tasks(ds, select):
+    """Indices of the usable tasks matching ``select`` (default: the first task's surface)."""
+    use = usable(ds)
+    if use.size == 0:
+        raise ParameterError("Fig. 2: no finished task in the dataset (all failed)")
+    if select is None:
+        select = {k: ds[k].values[use[0]] for k in SURFACE_KEYS if k in ds.coords}
+    for key in select:
+        if key not in ds.variables:
+            raise ParameterError(f"Fig. 2: select key {key!r} is not a parameter of the dataset")
+    chosen = [i for i in use if all(same(ds[k].values[i], v) for k, v in select.items())]
+    if not chosen:
+        raise ParameterError(f"Fig. 2: no finished task matches select = {dict(select)!r}")
+    return chosen

@@ -1,0 +1,199 @@
+"""Gather a study directory into one labelled dataset (``task`` × ``step``).
+
+Parameters become coordinates on ``task``, the per-path analysis
+(:class:`~roughcontact.analysis.path_analysis.PathAnalysis`) data variables on ``task``
+(NaN where a quantity does not exist or the task did not finish), and the per-step curves
+are padded with NaN (False, "" for flags and labels) along ``step``. Tasks are in the
+order of their ids, so two collects of the same study directory are identical.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+
+from .._validate import ParameterError
+from . import store
+from .schema import SWEEP_KEYS
+
+__all__ = ["STEP_VARIABLES", "collect_study"]
+
+STEP_VARIABLES = (
+    "offset",
+    "load",
+    "repulsive_load",
+    "attractive_load",
+    "repulsive_area",
+    "attractive_area",
+    "perimeter",
+    "mean_gap",
+    "iterations",
+    "residual",
+    "repulsive_patches",
+    "solve_seconds",
+    "converged",
+    "jump",
+    "branch",
+)
+_FLAGS = ("converged", "jump")
+# path-level attributes of a task file -> variable names in the collected dataset
+_PATH_ATTRS = {
+    "pull_off": "pull_off",
+    "rms_height": "measured_rms_height",
+    "rms_slope": "measured_rms_slope",
+    "rms_curvature": "rms_curvature",
+    "predicted_d_rep": "predicted_d_rep",
+    "short_cutoff_estimate": "short_cutoff_estimate",
+    "steps_not_converged": "steps_not_converged",
+    "task_seconds": "task_seconds",
+    "path_seconds": "path_seconds",
+}
+TIMINGS = ("task_seconds", "path_seconds", "solve_seconds")
+
+
+def _analysis_keys():
+    from ..analysis.path_analysis import PathAnalysis
+
+    return [f.name for f in dataclasses.fields(PathAnalysis) if f.name != "warnings"]
+
+
+def _number(value) -> float:
+    if value is None:
+        return math.nan
+    return float(value)
+
+
+def _read(out, task_id):
+    """(status, reason, attrs, step arrays) of one task."""
+    import xarray as xr
+
+    path = store.task_path(out, task_id)
+    failure = store.failure_path(out, task_id)
+    try:
+        with xr.open_dataset(path, engine="h5netcdf") as ds:
+            if store.MARKER in ds.attrs:
+                steps = {k: ds[k].values for k in STEP_VARIABLES if k in ds.variables}
+                return "done", "", dict(ds.attrs), steps
+    except (OSError, ValueError, KeyError):
+        pass
+    if failure.exists():
+        try:
+            reason = json.loads(failure.read_text()).get("reason", "failed")
+        except (OSError, ValueError):
+            reason = "failed (unreadable failure record)"
+        return "failed", reason, {}, {}
+    return "missing", "not run or not finished (run the study again with --resume)", {}, {}
+
+
+def collect_study(out_dir, *, include_timings: bool = True):
+    """One ``xarray.Dataset`` of a whole study directory.
+
+    Parameters
+    ----------
+    out_dir : path-like
+        A directory written by :func:`roughcontact.studies.run_study`.
+    include_timings : bool
+        Keep the wall-clock variables (``task_seconds``, ``path_seconds``,
+        ``solve_seconds``), which differ between two runs of the same study.
+
+    Returns
+    -------
+    xarray.Dataset
+        Dimensions ``task`` (sorted task ids) and ``step``. Coordinates on ``task``: the
+        parameters (hurst, rms_slope, short_cutoff, long_cutoff, size, pixel_size,
+        contact_modulus, thickness (inf: half-space), law, adhesion_length = w/E*, range,
+        work_of_adhesion, stiffness, ..., seed). Variables on ``task``: every scalar of
+        the path analysis (kappa, kappa_rep, kappa_att, area_ratio, d_rep, pull_off,
+        sticky (1/0), predicted_*, ...), analysis_warnings, analysis_error, measured
+        surface statistics, steps_not_converged, n_steps, status ("done", "failed",
+        "missing"), failed (True unless done), failure_reason, task_file. On ``task`` ×
+        ``step``: offset, load, repulsive/attractive load and area, perimeter, mean_gap,
+        iterations, residual, repulsive_patches, converged, jump, branch. Areas and loads
+        per A0 (loads in units of E*), lengths in units of a0.
+    """
+    import xarray as xr
+
+    from .. import __version__
+
+    out = Path(out_dir)
+    manifest = store.read_manifest(out)
+    tasks = sorted(manifest["tasks"], key=lambda t: t["id"])
+    if not tasks:
+        raise ParameterError(f"study directory {str(out)!r} lists no tasks")
+    records = [_read(out, t["id"]) for t in tasks]
+    n_steps = [len(r[3].get("offset", ())) for r in records]
+    width = max(n_steps)
+    coords = {"task": [t["id"] for t in tasks], "step": np.arange(width)}
+    for key in (*SWEEP_KEYS, "seed"):
+        values = [t["params"].get(key) for t in tasks]
+        if key == "thickness":
+            values = [math.inf if v is None else v for v in values]
+        if all(isinstance(v, str) for v in values) or all(isinstance(v, bool) for v in values):
+            coords[key] = ("task", np.array(values))
+        elif key in ("size", "seed"):
+            coords[key] = ("task", np.array(values, dtype=np.int64))
+        else:
+            coords[key] = ("task", np.array([_number(v) for v in values]))
+    data = {}
+    analyses = [json.loads(r[2].get("analysis", "{}") or "{}") for r in records]
+    for key in _analysis_keys():
+        if key in coords:  # rms_slope, contact_modulus: the parameters are coordinates
+            continue
+        data[key] = ("task", np.array([_number(a.get(key)) for a in analyses]))
+    data["analysis_warnings"] = (
+        "task",
+        np.array(["; ".join(a.get("warnings", [])) for a in analyses]),
+    )
+    data["analysis_error"] = ("task", np.array([r[2].get("analysis_error", "") for r in records]))
+    for attr, name in _PATH_ATTRS.items():
+        if name in data:  # an analysis variable of the same name (pull_off) wins
+            continue
+        data[name] = ("task", np.array([_number(r[2].get(attr)) for r in records]))
+    data["all_converged"] = (
+        "task",
+        np.array([bool(r[2].get("all_converged", 0)) for r in records]),
+    )
+    data["n_steps"] = ("task", np.array(n_steps, dtype=np.int64))
+    data["status"] = ("task", np.array([r[0] for r in records]))
+    data["failed"] = ("task", np.array([r[0] != "done" for r in records]))
+    data["failure_reason"] = ("task", np.array([r[1] for r in records]))
+    data["task_file"] = (
+        "task",
+        np.array(
+            [
+                store.task_path(".", t["id"]).name if r[0] == "done" else ""
+                for t, r in zip(tasks, records, strict=True)
+            ]
+        ),
+    )
+    for name in STEP_VARIABLES:
+        flag, label = name in _FLAGS, name == "branch"
+        fill = False if flag else ("" if label else math.nan)
+        dtype = bool if flag else (object if label else float)
+        block = np.full((len(tasks), width), fill, dtype=dtype)
+        for i, r in enumerate(records):
+            if name in r[3]:
+                block[i, : n_steps[i]] = r[3][name]
+        data[name] = (("task", "step"), block.astype(str) if label else block)
+    ds = xr.Dataset(data, coords=coords)
+    if not include_timings:
+        ds = ds.drop_vars([k for k in TIMINGS if k in ds.variables])
+    ds.attrs.update(
+        {
+            "study_name": manifest["name"],
+            "study_description": manifest.get("description", ""),
+            "study_sha256": manifest["sha256"],
+            "study_settings": json.dumps(manifest["settings"], sort_keys=True),
+            "tasks_done": int(sum(r[0] == "done" for r in records)),
+            "tasks_failed": int(sum(r[0] == "failed" for r in records)),
+            "tasks_missing": int(sum(r[0] == "missing" for r in records)),
+            "roughcontact_version": __version__,
+            "units": "lattice units unless given: loads and areas per nominal area A0, "
+            "lengths in units of the pixel size, pressures in units of E*",
+        }
+    )
+    return ds

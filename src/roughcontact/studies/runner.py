@@ -1,0 +1,167 @@
+"""Run a study: every task on Dask distributed, each result stored as soon as it arrives.
+
+The workers compute and return each task's path dataset (:mod:`.task`); the driver (this
+process) writes it atomically (:mod:`.store`), so the output directory needs to exist
+only where the driver runs.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+from .._validate import ParameterError
+from . import cluster, store
+from .spec import StudySpec, load_study
+
+__all__ = ["StudySummary", "run_study"]
+
+
+@dataclass(frozen=True)
+class StudySummary:
+    """What a run did: task counts, steps that did not converge, wall time (s)."""
+
+    name: str
+    out_dir: str
+    tasks: int
+    skipped: int
+    completed: int
+    failed: int
+    unconverged_tasks: int
+    unconverged_steps: int
+    seconds: float
+
+    @property
+    def ok(self) -> bool:
+        """True when every task finished (some steps may still not have converged)."""
+        return self.failed == 0
+
+    def __str__(self) -> str:
+        lines = [
+            f"study {self.name!r}: {self.tasks} tasks, {self.skipped} already finished, "
+            f"{self.completed} computed, {self.failed} failed in {self.seconds:.1f} s",
+            f"results in {self.out_dir}",
+        ]
+        if self.unconverged_steps:
+            lines.append(
+                f"{self.unconverged_steps} path steps in {self.unconverged_tasks} tasks did "
+                "not converge (see the 'converged' variable; not counted as failures)"
+            )
+        if self.failed:
+            lines.append(f"failed tasks are recorded in {self.out_dir}/task-*.failed.json")
+        return "\n".join(lines)
+
+
+def _drive(spec, out, todo, client, done, progress):
+    """Prepare the directory, run ``todo`` and store every outcome as it arrives."""
+    from tqdm import tqdm
+
+    out.mkdir(parents=True, exist_ok=True)
+    store.clean_temporary(out)
+    store.write_manifest(out, spec)
+    for task in todo:  # partial, corrupt or stale files: never taken as finished
+        store.task_path(out, task.id).unlink(missing_ok=True)
+    unconverged = [int(a.get("steps_not_converged", 0)) for a in done.values()]
+    failed = 0
+    with tqdm(
+        total=len(spec.tasks),
+        initial=len(done),
+        unit="task",
+        disable=not progress,
+        desc=spec.name,
+        dynamic_ncols=True,
+    ) as bar:
+        for task, outcome in cluster.outcomes(todo, client):
+            if outcome["status"] == "done":
+                ds = outcome["dataset"]
+                ds.attrs.update(
+                    study_name=spec.name, study_sha256=spec.sha256, study_source=spec.source
+                )
+                store.write_task(out, task, ds)
+                unconverged.append(int(ds.attrs["steps_not_converged"]))
+            else:
+                failed += 1
+                extra = {
+                    k: v for k, v in outcome.items() if k not in ("status", "reason", "traceback")
+                }
+                store.write_failure(
+                    out,
+                    task,
+                    outcome["reason"],
+                    outcome.get("traceback", ""),
+                    study_sha256=spec.sha256,
+                    **extra,
+                )
+            bar.update(1)
+    return unconverged, failed
+
+
+def run_study(study, out_dir, *, resume=False, scheduler=None, workers=None, progress=True):
+    """Run every task of a study and store each result as it finishes.
+
+    Parameters
+    ----------
+    study : StudySpec or path-like
+        A validated study or its TOML file (validated before anything else happens).
+    out_dir : path-like
+        Study directory (created). Without ``resume`` it must not hold a study yet.
+    resume : bool
+        Skip tasks whose file is finished (opens, has the completion marker and the
+        task's parameter hash); recompute missing, partial, corrupt and failed ones.
+    scheduler : None, str or distributed.Client
+        None: an in-process ``LocalCluster`` (processes, 1 thread each); an address
+        (``tcp://host:8786``): an existing cluster, reached within ``cluster.CONNECT_TIMEOUT``
+        seconds or a :class:`ParameterError`; ``"synchronous"``: in this process, no Dask.
+    workers : int, optional
+        Worker processes of the local cluster (default: the usable CPU cores).
+    progress : bool
+        Show a progress bar over tasks (stderr).
+
+    Returns
+    -------
+    StudySummary
+    """
+    t0 = time.perf_counter()
+    spec = study if isinstance(study, StudySpec) else load_study(study)
+    if workers is not None and (
+        isinstance(workers, bool) or not isinstance(workers, int) or workers < 1
+    ):
+        raise ParameterError(f"workers must be an integer >= 1, got {workers!r}")
+    out = Path(out_dir)
+    if out.exists() and not out.is_dir():
+        raise ParameterError(f"output {str(out)!r} exists and is not a directory")
+    if not resume and store.existing_results(out):
+        raise ParameterError(
+            f"{str(out)!r} already holds study results; pass --resume (resume=True) to "
+            "continue that study, or choose another directory"
+        )
+    done, todo = {}, []
+    for task in spec.tasks:
+        ok, info = store.check_task(out, task) if resume else (False, "")
+        if ok:
+            done[task.id] = info
+        else:
+            todo.append(task)
+    client = local = None
+    if todo and scheduler != "synchronous":
+        client, local = cluster.connect(scheduler, workers)  # an unreachable scheduler fails here
+    try:
+        unconverged, failed = _drive(spec, out, todo, client, done, progress)
+    finally:
+        if local is not None:
+            client.close()
+            local.close()
+        elif client is not None and client is not scheduler:
+            client.close()
+    return StudySummary(
+        name=spec.name,
+        out_dir=str(out),
+        tasks=len(spec.tasks),
+        skipped=len(done),
+        completed=len(todo) - failed,
+        failed=failed,
+        unconverged_tasks=sum(1 for u in unconverged if u),
+        unconverged_steps=sum(unconverged),
+        seconds=time.perf_counter() - t0,
+    )

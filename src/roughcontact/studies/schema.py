@@ -1,0 +1,195 @@
+"""The keys of a study file: type, accepted range, default, and whether a list sweeps.
+
+Sections ``[study]``, ``[surface]``, ``[substrate]``, ``[interaction]``, ``[path]``,
+``[solver]``, ``[analysis]``, ``[output]`` and ``[[cases]]``; see ``studies/smoke.toml``
+and the README. Lengths in units of the pixel size a0, moduli and pressures in units of E*.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from .._validate import ParameterError
+
+__all__ = ["SCHEMA", "SWEEP_KEYS", "find", "make_interaction"]
+
+LAWS = ("lj93smooth", "hardwall", "lj93", "exponential", "dugdale")
+FIELDS = ("pressure", "gap", "deflection")
+UNITS = {
+    "offset": ("length", "rms_height", "bearing_area"),
+    "load": ("modulus", "rms_slope_modulus"),
+}
+KINDS = {float: "a number", int: "an integer", bool: "true or false", str: "a string"}
+
+
+@dataclass(frozen=True)
+class _Key:
+    """One TOML key: type, accepted range (text and test), default, and whether it sweeps."""
+
+    kind: type
+    accepted: str = ""
+    test: object = None
+    default: object = None
+    sweep: bool = False
+    is_list: bool = False
+
+
+def _k(kind, accepted="", test=None, default=None, sweep=True, is_list=False):
+    return _Key(kind, accepted, test, default, sweep, is_list)
+
+
+_POS = ("> 0 and finite", lambda v: 0 < v < math.inf)
+_NUM = ("finite", math.isfinite)
+SCHEMA = {
+    "study": {"name": _k(str, sweep=False), "description": _k(str, sweep=False, default="")},
+    "surface": {
+        "size": _k(int, "an integer >= 8", lambda v: v >= 8),
+        "pixel_size": _k(float, *_POS, default=1.0),
+        "hurst": _k(float, "in (0, 1]", lambda v: 0 < v <= 1),
+        "rms_slope": _k(float, *_POS),
+        "rms_height": _k(float, *_POS),
+        "short_cutoff": _k(float, ">= 2 * pixel_size", lambda v: 0 < v < math.inf),
+        "long_cutoff": _k(float, "in (short_cutoff, size * pixel_size]", lambda v: v > 0),
+        "rolloff": _k(bool, default=True),
+        "seeds": _k(
+            int,
+            "a non-empty list of distinct integers >= 0",
+            lambda v: v >= 0,
+            sweep=False,
+            is_list=True,
+        ),
+    },
+    "substrate": {
+        "contact_modulus": _k(float, *_POS, default=1.0),
+        "thickness": _k(float, *_POS),
+        "poisson": _k(float, "in [0, 0.5]", lambda v: 0 <= v <= 0.5, default=0.5),
+        "base": _k(
+            str,
+            "'bonded' or 'frictionless'",
+            lambda v: v in ("bonded", "frictionless"),
+            default="bonded",
+        ),
+    },
+    "interaction": {
+        "law": _k(str, "one of " + ", ".join(LAWS), lambda v: v in LAWS, default="lj93smooth"),
+        "adhesion_length": _k(float, "> 0; law = 'hardwall' for no adhesion", _POS[1]),
+        "work_of_adhesion": _k(float, *_POS),
+        "range": _k(float, *_POS),
+        "stiffness": _k(float, *_POS),
+        "core_stiffness": _k(float, *_POS),
+    },
+    "path": {
+        "control": _k(str, "'offset' or 'load'", lambda v: v in UNITS, "offset", False),
+        "values": _k(float, *_NUM, sweep=False, is_list=True),
+        "start": _k(float, *_NUM, sweep=False),
+        "stop": _k(float, *_NUM, sweep=False),
+        "step": _k(
+            float, "non-zero and finite", lambda v: v != 0 and math.isfinite(v), sweep=False
+        ),
+        "num": _k(int, "an integer in [2, 100000]", lambda v: 2 <= v <= 100_000, sweep=False),
+        "spacing": _k(
+            str, "'linear' or 'geometric'", lambda v: v in ("linear", "geometric"), "linear", False
+        ),
+        "unit": _k(
+            str,
+            "'length', 'rms_height' or 'bearing_area' (offsets), 'modulus' or "
+            "'rms_slope_modulus' (loads)",
+            None,
+            None,
+            False,
+        ),
+        "lead_in": _k(float, "a list of lengths > 0", lambda v: 0 < v < math.inf, (), False, True),
+        "retract": _k(bool, default=True, sweep=False),
+    },
+    "solver": {
+        "tol": _k(float, "in (0, 1)", lambda v: 0 < v < 1, 1e-8, False),
+        "max_iter": _k(int, "an integer >= 1", lambda v: v >= 1, 5000, False),
+    },
+    "analysis": {
+        "target_area": _k(float, "in (0, 1)", lambda v: 0 < v < 1, 0.01, False),
+        "fit_max_area": _k(float, "in (0, 1]", lambda v: 0 < v <= 1, 0.05, False),
+        "branch": _k(
+            str,
+            "'approach' or 'retract'",
+            lambda v: v in ("approach", "retract"),
+            "approach",
+            False,
+        ),
+    },
+    "output": {
+        "fields_at": _k(int, "a list of step indices", None, (), False, True),
+        "fields": _k(
+            str, "a list from " + ", ".join(FIELDS), lambda v: v in FIELDS, FIELDS, False, True
+        ),
+    },
+}
+SWEEP_KEYS = tuple(k for s in SCHEMA.values() for k, d in s.items() if d.sweep)
+_SECTION = {k: s for s, keys in SCHEMA.items() for k in keys}
+
+
+def find(key) -> _Key:
+    """The schema entry of a parameter key (any section)."""
+    return SCHEMA[_SECTION[key]][key]
+
+
+LAW_KEYS = ("adhesion_length", "work_of_adhesion", "range", "stiffness", "core_stiffness")
+
+
+def make_interaction(p):
+    """The interaction law of a parameter set (ℓa = w/E*; lengths in the units of a0).
+
+    Reads ``p["law_inputs"]`` (the interaction parameters as given) when present.
+
+    ``lj93smooth`` takes ``adhesion_length`` (k = E*/(2 a0), Δr = √(24 a0 ℓa)) or any two
+    of stiffness, range, work_of_adhesion; ``lj93`` a work of adhesion or ℓa;
+    ``exponential`` and ``dugdale`` ℓa (or w) and a range; ``hardwall`` none.
+    """
+    from .. import interactions as it
+
+    law, es, a0 = p["law"], p["contact_modulus"], p["pixel_size"]
+    src = p.get("law_inputs", p)  # the values as given; p holds the derived ones too
+    given = {k: src.get(k) for k in LAW_KEYS if src.get(k) is not None}
+    if "adhesion_length" in given and "work_of_adhesion" in given:
+        raise ParameterError("give adhesion_length or work_of_adhesion, not both")
+    w = (
+        given["adhesion_length"] * es
+        if "adhesion_length" in given
+        else given.get("work_of_adhesion")
+    )
+    takes = {
+        "hardwall": (),
+        "lj93smooth": ("range", "stiffness"),
+        "lj93": (),
+        "exponential": ("range", "core_stiffness"),
+        "dugdale": ("range",),
+    }
+    extra = [k for k in given if k not in (*takes[law], "adhesion_length", "work_of_adhesion")]
+    if law == "hardwall" and given:
+        extra = list(given)
+    if extra:
+        raise ParameterError(f"{extra[0]} = {given[extra[0]]!r} does not apply to law = {law!r}")
+    if law == "hardwall":
+        return it.HardWall()
+    if law == "lj93smooth" and not given:
+        raise ParameterError(
+            "law = 'lj93smooth' needs adhesion_length (or any two of stiffness, range, "
+            "work_of_adhesion)"
+        )
+    if law == "lj93smooth":
+        return it.SmoothLJ93(
+            contact_modulus=es,
+            pixel_size=a0,
+            work_of_adhesion=w,
+            range=given.get("range"),
+            stiffness=given.get("stiffness"),
+        )
+    if w is None:
+        raise ParameterError(f"law = {law!r} needs adhesion_length (or work_of_adhesion)")
+    if law == "lj93":
+        return it.LennardJones93(work_of_adhesion=w, equilibrium_distance=a0)
+    if "range" not in given:
+        raise ParameterError(f"law = {law!r} needs range (> 0, length)")
+    if law == "exponential":
+        return it.Exponential(w, given["range"], given.get("core_stiffness"))
+    return it.MaugisDugdale(w, given["range"])

@@ -1,0 +1,249 @@
+"""Study definitions: a TOML file, validated on load and expanded into tasks.
+
+A study is a grid (cartesian product of every list-valued parameter) and/or an explicit
+list of ``[[cases]]`` over the surface, substrate and interaction parameters, times the
+seeds. Every task is one surface realisation × one parameter set × its whole path. The
+schema is in :data:`SCHEMA`; an example is ``studies/smoke.toml``. Lengths in units of
+the pixel size a0 (lattice units), moduli and pressures in the units of E*.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import itertools
+import json
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from .._validate import ParameterError
+from .schema import KINDS, LAW_KEYS, SCHEMA, SWEEP_KEYS, UNITS, find, make_interaction
+
+__all__ = ["StudySpec", "Task", "load_study", "make_interaction", "study_from_dict"]
+
+
+@dataclass(frozen=True)
+class Task:
+    """One unit of work: a resolved parameter set (incl. the seed) and the shared settings.
+
+    ``params`` holds every surface, substrate and interaction parameter with the
+    interaction's derived values filled in (None where a parameter does not apply);
+    ``key`` is the SHA-256 of ``params`` and ``settings``, checked on resume.
+    """
+
+    id: str
+    params: dict
+    settings: dict = field(repr=False)
+    key: str = ""
+
+
+@dataclass(frozen=True)
+class StudySpec:
+    """A validated study: its tasks in a deterministic order and where it came from."""
+
+    name: str
+    description: str
+    tasks: tuple
+    settings: dict
+    source: str
+    text: str
+    sha256: str
+    axes: dict = field(default_factory=dict)
+
+
+def load_study(path) -> StudySpec:
+    """Read, validate and expand a study TOML file (nothing is computed).
+
+    Raises
+    ------
+    ParameterError
+        Naming the key, the value and the accepted range of the first problem found.
+    """
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except OSError as err:
+        raise ParameterError(f"cannot read study file {str(path)!r}: {err.strerror}") from None
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as err:
+        raise ParameterError(f"study file {path.name}: not valid TOML: {err}") from None
+    return study_from_dict(data, source=str(path), text=text, default_name=path.stem)
+
+
+def _fail(message):
+    raise ParameterError(f"study: {message}")
+
+
+def _value(where, key, spec, value):
+    """Check one scalar against its type and range; return it (ints become floats)."""
+    bad_type = isinstance(value, bool) and spec.kind is not bool
+    if spec.kind is float and isinstance(value, int) and not bad_type:
+        value = float(value)
+    if bad_type or not isinstance(value, spec.kind):
+        expected = KINDS[spec.kind] + (f" ({spec.accepted})" if spec.accepted else "")
+        _fail(f"{where} {key} = {value!r} has the wrong type: expected {expected}")
+    if spec.test is not None and not spec.test(value):
+        _fail(f"{where} {key} = {value!r} is out of range: accepted {spec.accepted}")
+    return value
+
+
+def _section(data, name, where=None):
+    """Validated values of one section (lists stay lists) with unknown keys rejected."""
+    where = where or f"[{name}]"
+    raw = data.get(name, {})
+    if not isinstance(raw, dict):
+        _fail(f"{where} must be a table, got {raw!r}")
+    allowed = SCHEMA[name] if name != "cases" else {k: find(k) for k in SWEEP_KEYS}
+    out = {}
+    for key, value in raw.items():
+        if key not in allowed:
+            _fail(f"unknown key {key!r} in {where}; accepted: {', '.join(allowed)}")
+        spec = allowed[key]
+        if isinstance(value, list) and (spec.is_list or (spec.sweep and name != "cases")):
+            if not value and key not in ("fields_at", "lead_in"):
+                _fail(f"{where} {key} = [] is empty: give at least one value")
+            out[key] = [_value(where, key, spec, v) for v in value]
+        elif spec.is_list:
+            _fail(f"{where} {key} = {value!r} has the wrong type: expected a list")
+        else:
+            out[key] = _value(where, key, spec, value)
+    return out
+
+
+def study_from_dict(data, *, source="<dict>", text=None, default_name="study") -> StudySpec:
+    """Validate and expand a study given as a dict (the parsed TOML)."""
+    if not isinstance(data, dict):
+        _fail(f"a study is a table of sections, got {type(data).__name__}")
+    for name in data:
+        if name not in SCHEMA and name != "cases":
+            _fail(f"unknown section [{name}]; accepted: {', '.join(SCHEMA)}, [[cases]]")
+    sections = {name: _section(data, name) for name in SCHEMA}
+    cases = data.get("cases", [{}])
+    if not isinstance(cases, list) or not cases:
+        _fail(f"[[cases]] must be a non-empty array of tables, got {cases!r}")
+    cases = [_section({"cases": c}, "cases", f"[[cases]] #{i + 1}") for i, c in enumerate(cases)]
+    seeds = sections["surface"].pop("seeds", None)
+    if seeds is None:
+        _fail("[surface] seeds is missing: give a list of integers >= 0, e.g. seeds = [1, 2]")
+    if len(set(seeds)) != len(seeds):
+        _fail(f"[surface] seeds = {seeds!r} has repeated values: accepted {find('seeds').accepted}")
+    settings = _settings(sections)
+    base = {k: v for s in ("surface", "substrate", "interaction") for k, v in sections[s].items()}
+    axes = {k: v for k, v in base.items() if isinstance(v, list)}
+    for i, case in enumerate(cases):
+        clash = sorted(set(case) & set(axes))
+        if clash:
+            _fail(
+                f"[[cases]] #{i + 1} sets {clash[0]!r}, which is already a grid axis "
+                f"({clash[0]} = {axes[clash[0]]!r}); give it in one place only"
+            )
+    combos = []
+    for case in cases:
+        for values in itertools.product(*axes.values()):
+            varying = {**dict(zip(axes, values, strict=True)), **case}
+            combos.append(({**base, **varying}, varying))
+    tasks, width = [], max(5, len(str(len(combos) * len(seeds))))
+    for combo, varying in combos:
+        resolved = _resolve(combo, varying)
+        for seed in seeds:
+            params = {**resolved, "seed": seed}
+            key = _digest({"params": params, "settings": settings})
+            tasks.append(Task(f"{len(tasks):0{width}d}", params, settings, key))
+    text = json.dumps(data, sort_keys=True) if text is None else text
+    return StudySpec(
+        name=sections["study"].get("name", default_name),
+        description=sections["study"].get("description", ""),
+        tasks=tuple(tasks),
+        settings=settings,
+        source=source,
+        text=text,
+        sha256=hashlib.sha256(text.encode("utf-8")).hexdigest(),
+        axes={**axes, "seed": seeds},
+    )
+
+
+def _digest(obj) -> str:
+    return hashlib.sha256(json.dumps(obj, sort_keys=True).encode()).hexdigest()
+
+
+def _settings(sections) -> dict:
+    """Path, solver, analysis and output settings (shared by every task), with defaults."""
+    out = {}
+    for name in ("path", "solver", "analysis", "output"):
+        given = sections[name]
+        out[name] = {k: given.get(k, d.default) for k, d in SCHEMA[name].items()}
+    path = out["path"]
+    ranged = [k for k in ("start", "stop") if path[k] is not None]
+    if (path["values"] is not None) == (len(ranged) == 2):
+        _fail("[path] needs either values = [...] or start and stop (with step or num)")
+    if path["values"] is None and (path["step"] is None) == (path["num"] is None):
+        _fail("[path] with start/stop needs exactly one of step or num")
+    if path["values"] is not None and any(path[k] is not None for k in ("start", "step", "num")):
+        _fail("[path] give either values or start/stop/step, not both")
+    if path["spacing"] == "geometric" and (
+        path["num"] is None or path["start"] * path["stop"] <= 0
+    ):
+        _fail(
+            f"[path] spacing = 'geometric' needs num and start, stop of the same sign "
+            f"(start = {path['start']!r}, stop = {path['stop']!r})"
+        )
+    units = UNITS[path["control"]]
+    path["unit"] = units[0] if path["unit"] is None else path["unit"]
+    if path["unit"] not in units:
+        _fail(
+            f"[path] unit = {path['unit']!r} is out of range for control = "
+            f"{path['control']!r}: accepted {', '.join(map(repr, units))}"
+        )
+    path["lead_in"] = list(path["lead_in"])
+    if path["lead_in"] and path["control"] != "offset":
+        _fail(f"[path] lead_in = {path['lead_in']!r} applies to control = 'offset' only")
+    if path["unit"] == "bearing_area":
+        given = path["values"] or [path["start"], path["stop"]]
+        if not all(0 <= v <= 1 for v in given):
+            _fail(
+                f"[path] values {given!r} are out of range for unit = 'bearing_area': "
+                "accepted fractions in [0, 1]"
+            )
+    out["output"]["fields"] = list(out["output"]["fields"])
+    out["output"]["fields_at"] = list(out["output"]["fields_at"])
+    return out
+
+
+def _resolve(combo, varying) -> dict:
+    """Fill defaults, check the cross-parameter ranges, derive the interaction's values."""
+    p = {k: combo.get(k, find(k).default) for k in SWEEP_KEYS}
+    where = "in the parameter set " + ", ".join(f"{k}={v!r}" for k, v in varying.items())
+    where = where if varying else "for every task"
+    for key in ("size", "hurst", "short_cutoff"):
+        if p[key] is None:
+            _fail(f"[surface] {key} is missing: accepted {find(key).accepted}")
+    if (p["rms_slope"] is None) == (p["rms_height"] is None):
+        _fail(f"[surface] give exactly one of rms_slope, rms_height ({where})")
+    a0, size = p["pixel_size"], p["size"] * p["pixel_size"]
+    if p["short_cutoff"] < 2 * a0:
+        _fail(
+            f"[surface] short_cutoff = {p['short_cutoff']!r} is out of range: accepted >= "
+            f"2 * pixel_size = {2 * a0} ({where})"
+        )
+    default = p["long_cutoff"] is None
+    if default:
+        p["long_cutoff"] = size / 2
+    if not p["short_cutoff"] < p["long_cutoff"] <= size:
+        _fail(
+            f"[surface] long_cutoff = {p['long_cutoff']!r}"
+            + (" (the default size * pixel_size / 2)" if default else "")
+            + f" is out of range: accepted in (short_cutoff, size * pixel_size] = "
+            f"({p['short_cutoff']}, {size}] ({where})"
+        )
+    p["law_inputs"] = {k: p[k] for k in LAW_KEYS if p[k] is not None}
+    try:
+        law = make_interaction(p)
+    except ParameterError as err:
+        _fail(f"[interaction] {err} ({where})")
+    for key in ("work_of_adhesion", "range", "stiffness"):
+        value = getattr(law, key, None)
+        p[key] = float(value) if isinstance(value, float) else p[key]
+    if p["work_of_adhesion"] is not None:
+        p["adhesion_length"] = p["work_of_adhesion"] / p["contact_modulus"]
+    return p

@@ -1,0 +1,192 @@
+"""The result store of a study: one NetCDF file per task, written atomically.
+
+Layout of a study directory::
+
+    study.json                  the manifest: the study's tasks, settings and file hash
+    study.toml                  a copy of the study file as run
+    task-00000.nc               one finished task (path + provenance + analysis)
+    task-00001.failed.json      one failed task (reason and traceback)
+    .task-00002.nc.<id>.tmp     a write in progress (removed when a run starts)
+
+A task file is written to a temporary name in the same directory, the completion marker
+attribute :data:`MARKER` is added last, the file is fsync'ed and then renamed over its
+final name (``os.replace``, atomic on POSIX and Windows), and the directory is fsync'ed.
+A file is taken as finished only if it opens, carries the marker and the task's
+parameter hash (``task_key``); anything else is removed and recomputed.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import time
+import uuid
+from pathlib import Path
+
+from .._validate import ParameterError
+
+__all__ = [
+    "MANIFEST",
+    "MARKER",
+    "check_task",
+    "failure_path",
+    "read_manifest",
+    "task_path",
+    "write_failure",
+    "write_manifest",
+    "write_task",
+]
+
+MARKER = "roughcontact_task_complete"
+MANIFEST = "study.json"
+_TMP = ".tmp"
+
+
+def task_path(out_dir, task_id: str) -> Path:
+    """Final location of a finished task's NetCDF file."""
+    return Path(out_dir) / f"task-{task_id}.nc"
+
+
+def failure_path(out_dir, task_id: str) -> Path:
+    """Location of a failed task's JSON record."""
+    return Path(out_dir) / f"task-{task_id}.failed.json"
+
+
+def _fsync_dir(directory: Path) -> None:
+    if os.name == "nt":  # pragma: no cover - directories cannot be opened on Windows
+        return
+    fd = os.open(directory, os.O_RDONLY)
+    try:
+        os.fsync(fd)
+    finally:
+        os.close(fd)
+
+
+def _fsync_file(path: Path) -> None:
+    fd = os.open(path, os.O_RDONLY)
+    try:
+        os.fsync(fd)
+    finally:
+        os.close(fd)
+
+
+def atomic_write(final: Path, write) -> Path:
+    """Call ``write(tmp_path)``, fsync, then ``os.replace`` the temporary file onto ``final``."""
+    final = Path(final)
+    tmp = final.with_name(f".{final.name}.{uuid.uuid4().hex[:12]}{_TMP}")
+    try:
+        write(tmp)
+        _fsync_file(tmp)
+        os.replace(tmp, final)
+    except BaseException:
+        tmp.unlink(missing_ok=True)
+        raise
+    _fsync_dir(final.parent)
+    return final
+
+
+def _write_json(final: Path, obj) -> Path:
+    def write(tmp):
+        tmp.write_text(json.dumps(obj, indent=1, sort_keys=True, allow_nan=True) + "\n")
+
+    return atomic_write(final, write)
+
+
+def write_task(out_dir, task, ds) -> Path:
+    """Write a finished task atomically; the completion marker is the last thing written."""
+    import h5netcdf
+
+    def write(tmp):
+        ds.to_netcdf(tmp, engine="h5netcdf")
+        with h5netcdf.File(tmp, "a") as f:
+            f.attrs[MARKER] = time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())
+
+    path = atomic_write(task_path(out_dir, task.id), write)
+    failure_path(out_dir, task.id).unlink(missing_ok=True)
+    return path
+
+
+def write_failure(out_dir, task, reason: str, traceback: str = "", **extra) -> Path:
+    """Record a failed task (JSON: id, parameters, reason, traceback)."""
+    record = {
+        "task_id": task.id,
+        "task_key": task.key,
+        "parameters": task.params,
+        "reason": reason,
+        "traceback": traceback,
+        "time": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
+        **extra,
+    }
+    task_path(out_dir, task.id).unlink(missing_ok=True)
+    return _write_json(failure_path(out_dir, task.id), record)
+
+
+def check_task(out_dir, task):
+    """Is the task finished? Returns ``(True, attrs)`` or ``(False, why)``.
+
+    Finished: the file exists, opens as NetCDF, carries :data:`MARKER` and the task's
+    parameter hash, and its per-step variables can be read.
+    """
+    import xarray as xr
+
+    path = task_path(out_dir, task.id)
+    if not path.exists():
+        return False, "missing"
+    try:
+        with xr.open_dataset(path, engine="h5netcdf") as ds:
+            attrs = dict(ds.attrs)
+            if MARKER not in attrs:
+                return False, "no completion marker (incomplete write)"
+            if attrs.get("task_key") != task.key:
+                return False, "written for other parameters"
+            ds[["offset", "load", "repulsive_area", "converged"]].load()
+    except Exception as err:  # noqa: BLE001 - any unreadable file is simply not finished
+        return False, f"unreadable ({type(err).__name__}: {err})"
+    return True, attrs
+
+
+def clean_temporary(out_dir) -> int:
+    """Remove the temporary files that a killed run left behind; return how many."""
+    n = 0
+    for tmp in Path(out_dir).glob(f".task-*{_TMP}"):
+        tmp.unlink(missing_ok=True)
+        n += 1
+    return n
+
+
+def existing_results(out_dir) -> bool:
+    """Does ``out_dir`` already hold a study (a manifest or task files)?"""
+    out = Path(out_dir)
+    return out.is_dir() and (
+        (out / MANIFEST).exists() or any(out.glob("task-*.nc")) or any(out.glob("task-*.json"))
+    )
+
+
+def write_manifest(out_dir, spec) -> Path:
+    """The study's tasks, settings and provenance (``study.json``) and its file's copy."""
+    out = Path(out_dir)
+    manifest = {
+        "name": spec.name,
+        "description": spec.description,
+        "source": spec.source,
+        "sha256": spec.sha256,
+        "settings": spec.settings,
+        "axes": spec.axes,
+        "tasks": [{"id": t.id, "key": t.key, "params": t.params} for t in spec.tasks],
+    }
+    atomic_write(out / "study.toml", lambda tmp: tmp.write_text(spec.text, encoding="utf-8"))
+    return _write_json(out / MANIFEST, manifest)
+
+
+def read_manifest(out_dir) -> dict:
+    """The manifest of a study directory; a clear error if there is none."""
+    path = Path(out_dir) / MANIFEST
+    try:
+        return json.loads(path.read_text())
+    except FileNotFoundError:
+        raise ParameterError(
+            f"{str(out_dir)!r} is not a study directory (no {MANIFEST}; run "
+            "'roughcontact study run STUDY.toml -o DIR' first)"
+        ) from None
+    except (OSError, ValueError) as err:
+        raise ParameterError(f"cannot read {path}: {err}") from None

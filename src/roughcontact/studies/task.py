@@ -1,0 +1,169 @@
+"""One task of a study, run on a worker: surface → substrate → law → path → analysis.
+
+One task = one surface realisation × one parameter set × its whole path: generate the
+surface, build the substrate and the interaction, follow the approach (and retraction)
+with :func:`roughcontact.approach_retract` and analyse it with
+:func:`roughcontact.analysis.path_analysis.analyze_path`. The result is the path dataset
+with the task's provenance in its attributes; it is written by the driver (:mod:`.store`).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import platform
+import socket
+import time
+import traceback
+
+import numpy as np
+
+from .._validate import ParameterError
+from .schema import make_interaction
+from .spec import Task
+
+__all__ = ["compute_task", "path_values", "run_task"]
+
+
+def path_values(path: dict, heights, law, params: dict) -> np.ndarray:
+    """The offsets (length) or loads (mean pressure) of a task's approach.
+
+    Offsets are relative to the first contact of the summit, ``max(h) + d0`` (``d0`` the
+    law's equilibrium distance: a0 for the Lennard-Jones walls, 0 for the hard-core
+    laws), in units of length or of the surface's rms height; or (``unit =
+    "bearing_area"``) fractions v in [0, 1]: ``d = d0 + quantile(h, 1 - v)``, where the
+    undeformed rigid surface would overlap a fraction v of the substrate (the repulsive
+    area grows roughly in proportion, whatever the height distribution's tail).
+    ``lead_in`` offsets (length above the first contact) come before them. Loads are
+    in units of E* or of ``h'rms E*`` (``unit = "rms_slope_modulus"``, Fig. 2's abscissa).
+    """
+    from ..surfaces.statistics import statistics
+
+    if path["values"] is not None:
+        values = np.asarray(path["values"], dtype=float)
+    elif path["num"] is not None:
+        space = np.geomspace if path["spacing"] == "geometric" else np.linspace
+        values = space(path["start"], path["stop"], path["num"])
+    else:
+        start, stop, step = path["start"], path["stop"], abs(path["step"])
+        count = int(math.floor(abs(stop - start) / step + 1e-9)) + 1
+        values = start + np.sign(stop - start or 1) * step * np.arange(count)
+    stats = statistics(heights, pixel_size=params["pixel_size"])
+    if path["control"] == "offset":
+        d0 = float(getattr(law, "equilibrium_distance", 0.0))
+        first = float(heights.max()) + d0
+        lead_in = first + np.asarray(path["lead_in"], dtype=float)
+        if path["unit"] == "bearing_area":  # the undeformed surfaces overlap on this fraction
+            offsets = d0 + np.quantile(np.asarray(heights), 1.0 - values)
+        else:
+            offsets = first + (stats.rms_height if path["unit"] == "rms_height" else 1.0) * values
+        return np.concatenate((lead_in, offsets))
+    scale = stats.rms_slope if path["unit"] == "rms_slope_modulus" else 1.0
+    return values * scale * params["contact_modulus"]
+
+
+def compute_task(task: Task):
+    """Run one task in this process and return its dataset (path, provenance, analysis)."""
+    from ..analysis.path_analysis import analyze_path
+    from ..elastic import Substrate
+    from ..solvers import approach_retract
+    from ..surfaces import self_affine
+
+    p, s = task.params, task.settings
+    t0, started = time.perf_counter(), time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())
+    n = p["size"]
+    heights = self_affine(
+        (n, n),
+        hurst=p["hurst"],
+        rms_slope=p["rms_slope"],
+        rms_height=p["rms_height"],
+        short_cutoff=p["short_cutoff"],
+        long_cutoff=p["long_cutoff"],
+        rolloff=p["rolloff"],
+        pixel_size=p["pixel_size"],
+        seed=p["seed"],
+    )
+    substrate = Substrate(
+        (n, n),
+        contact_modulus=p["contact_modulus"],
+        pixel_size=p["pixel_size"],
+        thickness=p["thickness"],
+        poisson=p["poisson"],
+        base=p["base"],
+    )
+    law = make_interaction(p)
+    values = path_values(s["path"], heights, law, p)
+    t1 = time.perf_counter()
+    ds = approach_retract(
+        heights,
+        substrate,
+        law,
+        retract=s["path"]["retract"],
+        tol=s["solver"]["tol"],
+        max_iter=s["solver"]["max_iter"],
+        fields_at=s["output"]["fields_at"],
+        **{f"{s['path']['control']}s": values},
+    )
+    ds = ds.drop_vars(
+        [
+            f
+            for f in ("pressure", "gap", "deflection")
+            if f in ds.variables and f not in s["output"]["fields"]
+        ]
+    )
+    t2 = time.perf_counter()
+    try:
+        analysis, error = analyze_path(ds, **s["analysis"]).to_dict(), ""
+    except ParameterError as err:
+        analysis, error = {}, str(err)
+    t3 = time.perf_counter()
+    converged = np.asarray(ds["converged"].values, dtype=bool)
+    ds.attrs.update(
+        {
+            "task_id": task.id,
+            "task_key": task.key,
+            "task_parameters": json.dumps(p, sort_keys=True),
+            "task_settings": json.dumps(s, sort_keys=True),
+            "seed": int(p["seed"]),
+            "solver_tol": float(s["solver"]["tol"]),
+            "solver_max_iter": int(s["solver"]["max_iter"]),
+            "steps_not_converged": int((~converged).sum()),
+            "analysis": json.dumps(analysis, sort_keys=True),
+            "analysis_error": error,
+            "setup_seconds": t1 - t0,
+            "path_seconds": t2 - t1,
+            "analysis_seconds": t3 - t2,
+            "task_seconds": t3 - t0,
+            "started_utc": started,
+            "hostname": socket.gethostname(),
+            "python_version": platform.python_version(),
+            "numpy_version": np.__version__,
+        }
+    )
+    return ds
+
+
+def run_task(task: Task) -> dict:
+    """Worker entry point: ``{"status": "done", "dataset": ds}`` or a failure record.
+
+    Every exception is caught and returned with its traceback, so one failing task
+    never stops the study. Inside a Dask worker the FFTs use one thread each unless
+    ``ROUGHCONTACT_FFT_WORKERS`` is set (the worker's task threads already fill the cores).
+    """
+    try:
+        from distributed import get_worker
+
+        get_worker()
+        os.environ.setdefault("ROUGHCONTACT_FFT_WORKERS", "1")
+    except (ImportError, ValueError):
+        pass  # not on a Dask worker: leave the FFT threads as they are
+    try:
+        return {"status": "done", "dataset": compute_task(task)}
+    except Exception as err:  # noqa: BLE001 - recorded, the study goes on
+        return {
+            "status": "failed",
+            "reason": f"{type(err).__name__}: {err}",
+            "traceback": traceback.format_exc(),
+            "hostname": socket.gethostname(),
+        }
