@@ -132,11 +132,26 @@ def test_surface_bad_hurst(tmp_path):
     assert r.exit_code == 2 and "hurst" in r.output
 
 
-def test_demo_small_json():
-    r = CliRunner().invoke(main, ["demo", "--size", "128", "--json"])
+def test_demo_small_json(tmp_path):
+    args = ["demo", "--size", "128", "--study-size", "64", "--seeds", "2", "--json"]
+    r = CliRunner().invoke(main, [*args, "-o", str(tmp_path / "demo")])
     assert r.exit_code == 0, r.output
     out = json.loads(r.stdout)
     assert out["all_converged"] and len(out["path"]) == 8
+    study = out["study"]
+    assert study["tasks"] == 8 and study["failed"] == 0
+    la = [row["adhesion_length"] for row in study["table"]]
+    assert la == sorted(la) and len(la) == 4
+    # stronger adhesion: smaller κ_att and a larger pull-off (the trend of Fig. 4)
+    kappa_att = [row["kappa_att"] for row in study["table"]]
+    pull_off = [row["pull_off"] for row in study["table"]]
+    assert kappa_att == sorted(kappa_att, reverse=True) and pull_off == sorted(pull_off)
+    report = (tmp_path / "demo" / "report.md").read_text()
+    assert "κ_att" in report and "fig2" in report
+    assert (tmp_path / "demo" / "demo.nc").exists()
+    # a second run resumes: nothing is recomputed
+    r = CliRunner().invoke(main, [*args, "-o", str(tmp_path / "demo")])
+    assert r.exit_code == 0 and json.loads(r.stdout)["study"]["tasks"] == 8
 
 
 def test_path_lj93smooth_json(surface_file, tmp_path):
