@@ -4,7 +4,6 @@ import os
 import signal
 import subprocess
 import sys
-import textwrap
 import time
 
 import pytest
@@ -14,41 +13,11 @@ from click.testing import CliRunner
 from roughcontact.cli.main import main
 from roughcontact.studies import collect_study, run_study
 
-STUDY = """
-[study]
-name = "cli"
-
-[surface]
-size = {size}
-hurst = [0.5, 0.8]
-rms_slope = 0.1
-short_cutoff = 4.0
-seeds = [1, 2]
-
-[interaction]
-adhesion_length = [0.005, 0.05]
-
-[path]
-unit = "rms_height"
-start = 0.5
-stop = -2.0
-num = {num}
-
-[solver]
-tol = 1e-6
-{extra}
-"""
 CLI = [sys.executable, "-c", "from roughcontact.cli.main import main; main()"]
 
 
-def write_study(tmp_path, *, size=32, num=6, extra=""):
-    path = tmp_path / "study.toml"
-    path.write_text(textwrap.dedent(STUDY.format(size=size, num=num, extra=extra)))
-    return path
-
-
-def test_run_and_collect(tmp_path):
-    study = write_study(tmp_path)
+def test_run_and_collect(tmp_path, make_study):
+    study = make_study()
     out = tmp_path / "out"
     r = CliRunner().invoke(main, ["study", "run", str(study), "-o", str(out), "--workers", "2"])
     assert r.exit_code == 0, r.output
@@ -66,8 +35,8 @@ def test_run_and_collect(tmp_path):
         (["--scheduler", "tcp://127.0.0.1:1"], ["unknown key"]),  # validated first
     ],
 )
-def test_bad_study_is_one_line_and_exit_2(tmp_path, args, words):
-    study = write_study(tmp_path)
+def test_bad_study_is_one_line_and_exit_2(tmp_path, make_study, args, words):
+    study = make_study()
     study.write_text(study.read_text().replace("[surface]", "[surface]\nroughness = 1"))
     r = CliRunner().invoke(main, ["study", "run", str(study), "-o", str(tmp_path / "o"), *args])
     assert r.exit_code == 2
@@ -76,8 +45,8 @@ def test_bad_study_is_one_line_and_exit_2(tmp_path, args, words):
     assert not (tmp_path / "o").exists()
 
 
-def test_unreachable_scheduler_and_bad_directory_exit_2(tmp_path):
-    study = write_study(tmp_path)
+def test_unreachable_scheduler_and_bad_directory_exit_2(tmp_path, make_study):
+    study = make_study()
     r = CliRunner().invoke(
         main,
         [
@@ -96,12 +65,12 @@ def test_unreachable_scheduler_and_bad_directory_exit_2(tmp_path):
     assert r.exit_code == 2 and "not a study directory" in r.output
 
 
-def test_failed_task_exits_1(tmp_path):
+def test_failed_task_exits_1(tmp_path, make_study):
     # no wavevector of a 32² grid lies in 2π/4.37 < q < 2π/4.22 without roll-off:
     # valid on paper, the surface generator raises inside the task
     extra = "[[cases]]\nshort_cutoff = 4.22\nlong_cutoff = 4.37\nrolloff = false\n"
     extra += "[[cases]]\nshort_cutoff = 4.0\n"
-    study = write_study(tmp_path, extra=extra)
+    study = make_study(extra=extra)
     r = CliRunner().invoke(
         main,
         ["study", "run", str(study), "-o", str(tmp_path / "o"), "--workers", "1", "--no-progress"],
@@ -112,8 +81,8 @@ def test_failed_task_exits_1(tmp_path):
     assert len(list((tmp_path / "o").glob("task-*.nc"))) == 8
 
 
-def test_kill_9_then_resume_equals_an_uninterrupted_run(tmp_path):
-    study = write_study(tmp_path, size=64, num=16)
+def test_kill_9_then_resume_equals_an_uninterrupted_run(tmp_path, make_study):
+    study = make_study(size=64, num=16)
     out = tmp_path / "killed"
     cmd = [*CLI, "study", "run", str(study), "-o", str(out), "--workers", "2", "--no-progress"]
     proc = subprocess.Popen(
