@@ -5,8 +5,15 @@ Green's-function substrates, surface interactions and contact solvers.
 Conventions and units: see the README (lattice units a0 = 1, E* = 1 unless given).
 """
 
+from ._backend import to_device
 from ._validate import ParameterError
-from .analysis import area_fraction, contact_patches, perimeter, perimeter_edges
+from .analysis import (
+    area_fraction,
+    contact_patches,
+    corrected_area,
+    perimeter,
+    perimeter_edges,
+)
 from .elastic import Substrate
 from .interactions import Exponential, HardWall, LennardJones93, MaugisDugdale, SmoothLJ93
 from .solvers import ContactResult, PathError, approach_retract, polonsky_keer, solve
@@ -37,6 +44,7 @@ __all__ = [
     "approach_retract",
     "area_fraction",
     "contact_patches",
+    "corrected_area",
     "egg_box",
     "flat",
     "load_heights",
@@ -50,4 +58,5 @@ __all__ = [
     "solve",
     "sphere",
     "statistics",
+    "to_device",
 ]

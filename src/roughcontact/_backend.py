@@ -11,8 +11,24 @@ import os
 
 import numpy as np
 from array_api_compat import array_namespace, is_numpy_array
+from array_api_compat import device as array_device
 
-__all__ = ["array_namespace", "default_workers", "irfft2", "is_numpy_array", "rfft2", "to_numpy"]
+__all__ = [
+    "DTYPES",
+    "array_device",
+    "array_namespace",
+    "check_dtype",
+    "default_workers",
+    "dtype_name",
+    "irfft2",
+    "is_numpy_array",
+    "rfft2",
+    "to_device",
+    "to_numpy",
+]
+
+#: Floating-point precisions the core computes in (float64 is the default).
+DTYPES = ("float64", "float32")
 
 
 def default_workers() -> int:
@@ -50,3 +66,79 @@ def to_numpy(x) -> np.ndarray:
     if hasattr(x, "get"):  # CuPy
         return x.get()
     return np.asarray(x)
+
+
+def check_dtype(dtype) -> str | None:
+    """Normalise a precision request (``None``, ``"float64"``, ``"float32"`` or a dtype)."""
+    if dtype is None:
+        return None
+    name = getattr(dtype, "__name__", None) or str(getattr(dtype, "name", dtype))
+    if name not in DTYPES:
+        from ._validate import ParameterError
+
+        raise ParameterError(f"dtype must be one of {', '.join(DTYPES)}, got {dtype!r}")
+    return name
+
+
+def dtype_name(x) -> str:
+    """``"float32"`` or ``"float64"``: the precision a float array of any backend is in."""
+    return "float32" if x.dtype == array_namespace(x).float32 else "float64"
+
+
+def _cupy(device: str):
+    from ._validate import ParameterError
+
+    try:
+        import cupy
+    except ImportError:
+        raise ParameterError(
+            f"device={device!r} needs CuPy and an NVIDIA GPU; install a CuPy wheel that "
+            "matches your CUDA (e.g. pip install 'roughcontact[gpu]'), or use device='cpu'"
+        ) from None
+    try:
+        count = cupy.cuda.runtime.getDeviceCount()
+    except Exception as err:  # no driver, no device
+        raise ParameterError(f"device={device!r}: no usable CUDA device ({err})") from None
+    index = int(device.partition(":")[2] or 0)
+    if not 0 <= index < count:
+        raise ParameterError(f"device={device!r}: CUDA device index must be in [0, {count - 1}]")
+    return cupy, index
+
+
+def to_device(x, device: str | None = None, dtype=None):
+    """``x`` as an array on ``device`` in floating precision ``dtype``.
+
+    Parameters
+    ----------
+    x : array of any backend, or array-like
+    device : {None, "cpu", "cuda", "cuda:N"}
+        ``None`` keeps the array where it is (its own namespace); ``"cpu"`` gives NumPy;
+        ``"cuda"`` gives CuPy on the current (``"cuda:N"``: the N-th) GPU.
+    dtype : {None, "float64", "float32"}
+        ``None`` keeps a floating array's precision and makes anything else float64.
+
+    Returns
+    -------
+    array
+        Copied only when the device or the precision changes.
+    """
+    dtype = check_dtype(dtype)
+    if device is not None and not isinstance(device, str):
+        from ._validate import ParameterError
+
+        raise ParameterError(f"device must be 'cpu', 'cuda' or 'cuda:N', got {device!r}")
+    if device == "cpu" or (device is None and not hasattr(x, "__array_namespace__")):
+        x = to_numpy(x) if hasattr(x, "__array_namespace__") else np.asarray(x)
+    elif device is not None and (device == "cuda" or device.startswith("cuda:")):
+        cupy, index = _cupy(device)
+        with cupy.cuda.Device(index):
+            x = cupy.asarray(x)
+    elif device is not None:
+        from ._validate import ParameterError
+
+        raise ParameterError(f"device must be 'cpu', 'cuda' or 'cuda:N', got {device!r}")
+    xp = array_namespace(x)
+    if dtype is None:
+        dtype = x.dtype if xp.isdtype(x.dtype, "real floating") else "float64"
+    want = getattr(xp, dtype) if isinstance(dtype, str) else dtype
+    return x if x.dtype == want else xp.astype(x, want)

@@ -47,7 +47,7 @@ def shape2d(name: str, shape) -> tuple[int, int]:
 
 
 def heights2d(name: str, heights):
-    """Check that a height map is a 2D array of finite reals; return it as float64."""
+    """Check that a height map is a 2D array of finite reals (NumPy input: as float64)."""
     from ._backend import array_namespace, is_numpy_array
 
     if not hasattr(heights, "shape"):
@@ -57,7 +57,7 @@ def heights2d(name: str, heights):
     if heights.shape[0] < 2 or heights.shape[1] < 2:
         raise ParameterError(f"{name} must be at least 2x2, got shape {tuple(heights.shape)}")
     xp = array_namespace(heights)
-    if is_numpy_array(heights):
+    if is_numpy_array(heights) and heights.dtype not in (np.float64, np.float32):
         heights = np.asarray(heights, dtype=float)
     if not bool(xp.all(xp.isfinite(heights))):
         raise ParameterError(f"{name} must be finite everywhere (found NaN or inf)")

@@ -128,3 +128,18 @@ def test_rigid_mean_offset_below_mean_height_is_rejected(sphere):
     h, sub = sphere
     with pytest.raises(rc.ParameterError, match="offset"):
         rc.solve(h, sub, MaugisDugdale(work_of_adhesion=0.01, range=0.5), offset=h.mean() - 1)
+
+
+def test_load_control_never_steps_below_the_hard_core_bound():
+    # a very sticky rough contact: the load stays tensile until the offset is well into
+    # the surface, so the bracketing search runs into the bound mean(h) of a hard core on
+    # a rigid-mean substrate (it used to step past it and fail with an offset error)
+    h = rc.self_affine((64, 64), hurst=0.8, rms_slope=0.1, short_cutoff=4, seed=11)
+    sub = rc.Substrate((64, 64))
+    law = Exponential(work_of_adhesion=0.005, range=0.5)
+    res = rc.solve(h, sub, law, load=1e-3, tol=1e-9)
+    assert res.converged and res.load == pytest.approx(1e-3, abs=1e-9)
+    assert rc.solve(h, sub, law, offset=res.offset, initial=res).load == pytest.approx(1e-3)
+    # more than the contact carries just above mean(h): reported, not an exception
+    res = rc.solve(h, sub, law, load=0.5, tol=1e-8)
+    assert not res.converged and "next to mean(heights)" in res.message

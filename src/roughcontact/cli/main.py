@@ -163,10 +163,26 @@ def _substrate_options(f):
             help="Layer attachment to its rigid base.",
         ),
         click.option(
-            "--tol", type=float, default=1e-8, show_default=True, help="Solver tolerance."
+            "--tol",
+            type=float,
+            default=None,
+            help="Solver tolerance (default 1e-8; 1e-6, its floor, with --dtype float32).",
         ),
         click.option(
             "--max-iter", type=int, default=5000, show_default=True, help="Iteration cap per state."
+        ),
+        click.option(
+            "--device",
+            default="cpu",
+            show_default=True,
+            help="Where to compute: cpu, cuda or cuda:N (an NVIDIA GPU through CuPy).",
+        ),
+        click.option(
+            "--dtype",
+            type=click.Choice(["float64", "float32"]),
+            default="float64",
+            show_default=True,
+            help="Floating-point precision of the computation.",
         ),
     ]
     for o in reversed(opts):
@@ -258,6 +274,8 @@ def contact(
     base,
     tol,
     max_iter,
+    device,
+    dtype,
     interaction,
     work,
     range_,
@@ -280,7 +298,10 @@ def contact(
     law = _make_interaction(
         interaction, work, range_, stiffness, core_stiffness, modulus, pixel_size
     )
-    res = solve(h, sub, law, load=load, offset=offset, tol=tol, max_iter=max_iter)
+    res = solve(
+        h, sub, law, load=load, offset=offset, tol=tol, max_iter=max_iter, device=device,
+        dtype=dtype,
+    )  # fmt: skip
     if save_fields:
         import numpy as np
 
@@ -295,7 +316,8 @@ def contact(
             click.echo(f"{k:>16}: {v}")
     if not res.converged:
         _fail(
-            f"solver did not converge: {res.message} (residual {res.residual:.3g} > tol {tol})",
+            f"solver did not converge: {res.message} "
+            f"(residual {res.residual:.3g} > tol {res.tol:g})",
             EXIT_NOT_CONVERGED,
         )
 
@@ -347,6 +369,8 @@ def path(
     base,
     tol,
     max_iter,
+    device,
+    dtype,
     interaction,
     work,
     range_,
@@ -405,6 +429,8 @@ def path(
             max_iter=max_iter,
             fields_at=fields_at,
             progress=show,
+            device=device,
+            dtype=dtype,
             **kwargs,
         )
     except PathError as err:
@@ -453,7 +479,7 @@ def demo(size, seed, study_size, seeds, output, as_json):
     """The main job on built-in defaults.
 
     1. A non-adhesive load path: A_rep/A0 against load and κ_rep at 1 % contact.
-    2. An adhesive study (the paper's Figs. 2 and 4): κ, κ_rep, κ_att, A_rep/A_att and
+    2. An adhesive study (the paper's Figs. 1-4): κ, κ_rep, κ_att, A_rep/A_att and
     pull-off for adhesion lengths from non-sticky to sticky, against the theory, with
     figures and a Markdown report in --output.
     """

@@ -20,7 +20,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .._backend import array_namespace, irfft2, is_numpy_array, rfft2
+from .._backend import array_device, array_namespace, irfft2, is_numpy_array, rfft2
 from .._validate import ParameterError, in_range, positive, shape2d
 from .stiffness import (
     bonded_layer_stiffness,
@@ -115,16 +115,24 @@ class Substrate:
         return math.isinf(self.stiffness[0, 0])
 
     def _arrays(self, like):
-        """Stiffness and compliance on the namespace/device of ``like`` (cached)."""
-        key = "numpy" if is_numpy_array(like) else type(like).__module__
+        """Stiffness and compliance on the namespace, device and precision of ``like``.
+
+        Cached per (backend, device, dtype), so the loops never copy them.
+        """
+        numpy = is_numpy_array(like)
+        key = ("numpy", "cpu") if numpy else (type(like).__module__, str(array_device(like)))
+        key += (str(like.dtype),)
         if key not in self._cache:
             k = self.stiffness
             with np.errstate(divide="ignore"):
                 c = np.where(np.isinf(k), 0.0, 1.0 / k)
             kf = np.where(np.isinf(k), 0.0, k)
-            if key != "numpy":
+            if numpy:
+                c, kf = c.astype(like.dtype, copy=False), kf.astype(like.dtype, copy=False)
+            else:
                 xp = array_namespace(like)
-                c, kf = xp.asarray(c), xp.asarray(kf)
+                c = xp.asarray(c, dtype=like.dtype, device=array_device(like))
+                kf = xp.asarray(kf, dtype=like.dtype, device=array_device(like))
             self._cache[key] = (kf, c)
         return self._cache[key]
 

@@ -49,8 +49,14 @@ class GapLaw:
 
 
 def as_gap(gap):
-    """``(xp, g)``: the array namespace of ``gap`` and the gap as a float64 array of it."""
+    """``(xp, g)``: the array namespace of ``gap`` and the gap as a float array of it.
+
+    float32 gaps stay float32 (the solvers' single-precision option); anything else
+    becomes float64.
+    """
     if not hasattr(gap, "__array_namespace__"):
         gap = np.asarray(gap, dtype=float)
     xp = array_namespace(gap)
-    return xp, xp.astype(gap, xp.float64) if gap.dtype != xp.float64 else gap
+    if gap.dtype in (xp.float64, xp.float32):
+        return xp, gap
+    return xp, xp.astype(gap, xp.float64)

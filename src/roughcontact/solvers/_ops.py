@@ -1,4 +1,4 @@
-"""Operators and input checks shared by the solvers (flat float64 arrays on the grid)."""
+"""Operators and input checks shared by the solvers (flat float arrays on the grid)."""
 
 from __future__ import annotations
 
@@ -6,14 +6,17 @@ import math
 
 import numpy as np
 
-from .._backend import array_namespace, irfft2, is_numpy_array, rfft2
+from .._backend import array_namespace, dtype_name, irfft2, is_numpy_array, rfft2, to_device
 from .._validate import ParameterError, heights2d
 
 __all__ = [
+    "DEFAULT_TOL",
+    "StallGuard",
     "check_hard_wall_offset",
     "check_problem",
     "compliance_operator",
     "dot",
+    "total",
     "stiffness_operator",
 ]
 
@@ -41,28 +44,88 @@ def stiffness_operator(substrate):
 
 
 def dot(a, b) -> float:
-    """Euclidean inner product of two flat arrays of one backend, as a Python float."""
+    """Euclidean inner product of two flat arrays of one backend, as a Python float.
+
+    Accumulated in float64 also for float32 arrays: energies and CG coefficients are
+    differences of sums over the whole grid, which float32 accumulation would drown.
+    """
     if is_numpy_array(a):
         # einsum: no temporary and no BLAS threads (which cost more than they save on a
         # shared machine for vectors of this length)
-        return float(np.einsum("i,i->", a, b))
-    return float(array_namespace(a).sum(a * b))
+        return float(np.einsum("i,i->", a, b, dtype=np.float64))
+    xp = array_namespace(a)
+    return float(xp.sum(a * b, dtype=xp.float64))
 
 
-def check_problem(heights, substrate, tol, offset=None) -> np.ndarray:
-    """Validate the common inputs; return the heights as a contiguous float64 array."""
-    h = heights2d("heights", heights)
+def total(x) -> float:
+    """Sum of an array of any backend as a Python float, accumulated in float64."""
+    xp = array_namespace(x)
+    return float(xp.sum(x, dtype=xp.float64))
+
+
+#: Default tolerance of every solver's residual, and the smallest float32 can reach
+#: (measured: the residuals of all three solvers stall at 3e-7 to 6e-7 in single
+#: precision; see the README).
+DEFAULT_TOL = {"float64": 1e-8, "float32": 1e-6}
+
+
+def check_problem(heights, substrate, tol, offset=None, device=None, dtype=None):
+    """Validate the common inputs; return ``(heights, tol)`` ready for the solvers.
+
+    The heights come back on ``device`` in ``dtype`` (float64 unless ``"float32"`` is
+    asked for; NumPy heights contiguous) and the solvers then compute there. ``tol``
+    None gives :data:`DEFAULT_TOL` for that precision; in float32 a tolerance below its
+    floor is rejected (it could never be met).
+    """
+    h = heights2d("heights", to_device(heights, device, dtype or "float64"))
     if is_numpy_array(h):
-        h = np.ascontiguousarray(h, dtype=float)
+        h = np.ascontiguousarray(h)
     if tuple(h.shape) != substrate.shape:
         raise ParameterError(
             f"heights shape {h.shape} differs from substrate shape {substrate.shape}"
         )
     if offset is not None and not math.isfinite(float(offset)):
         raise ParameterError(f"offset must be finite, got {offset!r}")
+    precision = dtype_name(h)
+    if tol is None:
+        return h, DEFAULT_TOL[precision]
     if not float(tol) > 0:
         raise ParameterError(f"tol must be > 0, got {tol!r}")
-    return h
+    if float(tol) < DEFAULT_TOL["float32"] and precision == "float32":
+        raise ParameterError(
+            f"tol must be >= {DEFAULT_TOL['float32']:g} with dtype='float32' (single "
+            f"precision cannot resolve smaller residuals), got {tol!r}; use dtype='float64'"
+        )
+    return h, float(tol)
+
+
+class StallGuard:
+    """Detects a float32 solve stuck at its rounding floor, so it stops early and says so.
+
+    In single precision the residual cannot fall below roughly ``1e-7 * max|p| / E*``
+    (more under heavy compression); without this guard such a solve would spend its
+    whole iteration cap there. Active only for float32: a float64 solve is never cut
+    short by it.
+    """
+
+    def __init__(self, precision: str, patience: int = 200):
+        self.active = precision == "float32"
+        self.patience, self.best, self.since = patience, math.inf, 0
+
+    def __call__(self, residual: float) -> str | None:
+        """The not-converged message if no new best residual came in ``patience`` calls."""
+        if not self.active:
+            return None
+        if residual < 0.99 * self.best:
+            self.best, self.since = residual, 0
+            return None
+        self.since += 1
+        if self.since < self.patience:
+            return None
+        return (
+            f"stalled at residual {self.best:.2g} for {self.patience} iterations: the float32 "
+            "rounding floor (use dtype='float64' or a larger tol)"
+        )
 
 
 def check_hard_wall_offset(heights, substrate, offset) -> None:

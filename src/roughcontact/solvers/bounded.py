@@ -35,9 +35,16 @@ from __future__ import annotations
 import math
 import time
 
-from .._backend import array_namespace, to_numpy
+from .._backend import array_namespace, dtype_name, to_numpy
 from .._validate import ParameterError
-from ._ops import check_hard_wall_offset, check_problem, compliance_operator, stiffness_operator
+from ._ops import (
+    StallGuard,
+    check_hard_wall_offset,
+    check_problem,
+    compliance_operator,
+    stiffness_operator,
+    total,
+)
 from ._ops import dot as _dot
 from .observables import make_result
 from .smooth import _line_minimum
@@ -78,10 +85,12 @@ def minimize_energy_bounded(
     *,
     offset,
     initial=None,
-    tol=1e-8,
+    tol=None,
     max_iter=5000,
     callback=None,
     restart_every=200,
+    device=None,
+    dtype=None,
 ):
     """Solve a hard-core adhesive contact state at fixed ``offset`` (see module docstring).
 
@@ -95,20 +104,26 @@ def minimize_energy_bounded(
         Offset ``d`` (length); gap ``g = d - h + w >= 0``.
     initial : ContactResult or array, optional
         Warm start (its deflection, projected onto the feasible set).
-    tol : float
+    tol : float, optional
         Tolerance on the largest free-site force imbalance / E*.
+        Default 1e-8 (float64) or 1e-6 (float32, also the smallest allowed there).
     max_iter : int
         Iteration cap; reaching it returns ``converged=False``.
     callback : callable, optional
         ``callback(iteration, residual)``; return True to stop.
+    device : {None, "cpu", "cuda", "cuda:N"}, optional
+        Where to compute (default: where ``heights`` live); see :func:`roughcontact.to_device`.
+    dtype : {None, "float64", "float32"}, optional
+        Precision of the computation (default float64). float32 halves memory and
+        time on a GPU; its accuracy floor is documented in the README.
 
     Returns
     -------
     ContactResult
     """
     t_start = time.perf_counter()
-    h = check_problem(heights, substrate, tol, offset)
-    offset, tol = float(offset), float(tol)
+    h, tol = check_problem(heights, substrate, tol, offset, device, dtype)
+    offset = float(offset)
     shape, n = h.shape, h.size
     es = substrate.contact_modulus
     rigid = substrate.rigid_mean
@@ -125,21 +140,22 @@ def minimize_energy_bounded(
     if initial is not None:
         w0 = getattr(initial, "deflection", initial)
         w0 = xp.asarray(w0 if xp is array_namespace(w0) else to_numpy(w0), copy=True)
-        w0 = xp.reshape(xp.astype(w0, xp.float64), (-1,))
+        w0 = xp.reshape(xp.astype(w0, h.dtype), (-1,))
         if w0.size != n:
             raise ParameterError(f"initial must have the substrate's shape {substrate.shape}")
     else:
-        w0 = xp.zeros(n, dtype=xp.float64)
+        w0 = xp.zeros(n, dtype=h.dtype)
     w = project_feasible(w0 - xp.mean(w0) if rigid else w0, lower, rigid)
     kw = stiff(w)
 
     def energy(w_, kw_):
-        return 0.5 * _dot(w_, kw_) + float(xp.sum(interaction.energy(base + w_)))
+        return 0.5 * _dot(w_, kw_) + total(interaction.energy(base + w_))
 
     e_cur = energy(w, kw)
     s = ks = z_old = None
     gz_old, active_old = 1.0, None
     converged, message, residual, it, mu = False, "iteration cap reached", math.inf, 0, 0.0
+    stall = StallGuard(dtype_name(h))
     free = xp.ones(n, dtype=xp.bool)
     while True:
         gap = base + w
@@ -160,6 +176,9 @@ def minimize_energy_bounded(
             break
         if residual <= tol or not xp.any(free):
             converged, message = True, "converged"
+            break
+        if (stalled := stall(residual)) is not None:
+            message = stalled
             break
         if it >= max_iter:
             break

@@ -19,23 +19,37 @@ as not converged, and displacement control is the way to follow such a law.
 from __future__ import annotations
 
 import dataclasses
+import math
 import time
 
-import numpy as np
-
-from .._backend import array_namespace
+from .._backend import array_namespace, dtype_name
+from ._ops import check_problem
 
 __all__ = ["solve_at_load"]
 
 
 def solve_at_load(
-    minimize, heights, substrate, interaction, *, load, initial, tol, max_iter, callback
+    minimize,
+    heights,
+    substrate,
+    interaction,
+    *,
+    load,
+    initial,
+    tol,
+    max_iter,
+    callback,
+    device=None,
+    dtype=None,
 ):
     """Solve for mean pressure ``load`` with a displacement-controlled ``minimize``."""
     t0 = time.perf_counter()
     load = float(load)
+    # moved to the device once; every solve below then computes where the heights are
+    h, tol = check_problem(heights, substrate, tol, None, device, dtype)
+    heights = h
     load_tol = tol * substrate.contact_modulus
-    h = heights if hasattr(heights, "__array_namespace__") else np.asarray(heights, float)
+    dtype = dtype_name(h)
     xp = array_namespace(h)
     scale = max(float(xp.std(h)), substrate.pixel_size)
     states: dict[float, object] = {}
@@ -46,7 +60,7 @@ def solve_at_load(
         start = states[near] if near is not None else initial
         res = minimize(
             heights, substrate, interaction, offset=d, initial=start, tol=tol,
-            max_iter=max_iter, callback=callback,
+            max_iter=max_iter, callback=callback, dtype=dtype,
         )  # fmt: skip
         total["it"] += res.iterations
         states[d] = res
@@ -72,21 +86,32 @@ def solve_at_load(
     # too much compression (f > 0) -> open up (larger d), else close in
     direction = 1.0 if f_a > 0 else -1.0
     step = 0.01 * scale
+    # a hard core on a rigid-mean substrate admits no offset at or below mean(h) (the
+    # surfaces would overlap everywhere): approach that bound by halving instead
+    lowest = float(xp.mean(h)) if interaction.hard_core and substrate.rigid_mean else -math.inf
     for _ in range(60):
         d_b = d_a + direction * step
+        near_bound = d_b <= lowest
+        if near_bound:
+            if d_a - lowest <= 1e-6 * scale:
+                return finish(
+                    res_a, False, f"load {load:g} not reached: it is {res_a.load:g} at offset "
+                    f"{d_a:g}, next to mean(heights) where the contact is complete",
+                )  # fmt: skip
+            d_b = 0.5 * (d_a + lowest)
         res_b = evaluate(d_b)
         f_b = res_b.load - load
         if not res_b.converged or abs(f_b) <= load_tol:
             return finish(res_b, abs(f_b) <= load_tol, "converged (load control)")
         if (f_b > 0) != (f_a > 0):
             break
-        if abs(f_b - f_a) <= load_tol and step > scale:
+        if abs(f_b - f_a) <= load_tol and step > scale and not near_bound:
             # the load no longer changes with d: detached (beyond the pull-off force)
             return finish(
                 res_b, False, f"no state carries load {load:g}: it stays {res_b.load:g} "
                 f"up to offset {d_b:g} (beyond the pull-off force?)",
             )  # fmt: skip
-        d_a, f_a, step = d_b, f_b, 2.0 * step
+        d_a, f_a, res_a, step = d_b, f_b, res_b, 2.0 * step
     else:
         return finish(res_b, False, f"load {load:g} not bracketed by offsets up to {d_b:g}")
     side = 0

@@ -41,20 +41,21 @@ def make_result(
         repulsive = pressure > 0
     if attractive is None:
         attractive = np.zeros_like(repulsive)
-    rep_load = float(pressure[repulsive].sum()) / n
-    att_load = -float(pressure[attractive].sum()) / n
+    # accumulated in float64 also for float32 fields (the single-precision option)
+    rep_load = float(pressure[repulsive].sum(dtype=np.float64)) / n
+    att_load = -float(pressure[attractive].sum(dtype=np.float64)) / n
     edges = perimeter_edges(repulsive)
     a0 = substrate.pixel_size
     return ContactResult(
         offset=float(offset),
-        load=float(pressure.sum()) / n,
+        load=float(pressure.sum(dtype=np.float64)) / n,
         repulsive_load=rep_load,
         attractive_load=att_load,
         repulsive_area=float(np.count_nonzero(repulsive)) / n,
         attractive_area=float(np.count_nonzero(attractive)) / n,
         perimeter=edges * np.pi / 4 * a0 / substrate.nominal_area,
         perimeter_edges=edges,
-        mean_gap=float(gap.mean()),
+        mean_gap=float(gap.mean(dtype=np.float64)),
         iterations=int(iterations),
         residual=float(residual),
         converged=bool(converged),

@@ -7,6 +7,7 @@ import time
 
 import numpy as np
 
+from .._backend import array_device, dtype_name, to_device
 from .._validate import ParameterError
 from ..analysis.contact_geometry import contact_patches
 from .solve import solve
@@ -46,11 +47,13 @@ def approach_retract(
     offsets=None,
     loads=None,
     retract=True,
-    tol=1e-8,
+    tol=None,
     max_iter=5000,
     fields_at=(),
     jump_factor=2.0,
     progress=None,
+    device=None,
+    dtype=None,
 ):
     """Follow a quasi-static path and return it as an ``xarray.Dataset``.
 
@@ -77,6 +80,9 @@ def approach_retract(
         the substrate by the interaction range or more.
     progress : callable, optional
         ``progress(step, n_steps, result)`` after every step (e.g. a progress bar).
+    device, dtype
+        Where and in which precision to compute, as for :func:`roughcontact.solve`; the
+        heights are moved once, before the first step. Recorded in the attrs.
 
     Returns
     -------
@@ -109,12 +115,16 @@ def approach_retract(
 
     jump_length = _jump_length(interaction)
     attrs = provenance(heights, substrate, interaction)
+    heights = to_device(heights, device, dtype or "float64")
+    dtype = dtype_name(heights)
+    attrs |= {"dtype": dtype, "device": str(array_device(heights))}
     rows, fields, previous, t0 = [], {}, None, time.perf_counter()
     for step, value in enumerate(values):
         kwargs = {control: float(value)}
         res = solve(
-            heights, substrate, interaction, initial=previous, tol=tol, max_iter=max_iter, **kwargs
-        )
+            heights, substrate, interaction, initial=previous, tol=tol, max_iter=max_iter,
+            dtype=dtype, **kwargs,
+        )  # fmt: skip
         if "non-finite" in res.message or not math.isfinite(res.load):
             raise PathError(
                 f"step {step} ({control} = {value:g}): {res.message}",

@@ -6,6 +6,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..analysis.contact_geometry import AREA_CORRECTION_PER_EDGE
+
 __all__ = ["ContactResult"]
 
 
@@ -73,6 +75,20 @@ class ContactResult:
     def total_load(self) -> float:
         """External load N (pressure × length²)."""
         return self.load * self.nominal_area
+
+    @property
+    def corrected_repulsive_area(self) -> float:
+        r"""Perimeter-corrected repulsive area per nominal area, :math:`A_{rep}/A_0`.
+
+        The estimate of Yastrebov, Anciaux & Molinari, Tribol. Int. 114, 161 (2017)
+        (see :func:`roughcontact.analysis.corrected_area`), computed on demand from the
+        stored site fraction and boundary-bond count :math:`n_e` (``perimeter_edges``):
+        ``repulsive_area - (π - 1 + ln 2)/24 · n_e · a0² / A0``. Less biased than the
+        raw site count ``repulsive_area``, which overestimates by a term proportional
+        to the perimeter.
+        """
+        edge_area = AREA_CORRECTION_PER_EDGE * self.pixel_size**2
+        return float(self.repulsive_area - edge_area * self.perimeter_edges / self.nominal_area)
 
     def summary(self) -> dict:
         """Scalars only, JSON-ready (the keys of ``roughcontact contact --json``)."""

@@ -33,9 +33,9 @@ from __future__ import annotations
 import math
 import time
 
-from .._backend import array_namespace, irfft2, rfft2, to_numpy
+from .._backend import array_namespace, dtype_name, irfft2, rfft2, to_numpy
 from .._validate import ParameterError
-from ._ops import check_problem, stiffness_operator
+from ._ops import StallGuard, check_problem, stiffness_operator
 from ._ops import dot as _dot
 from .observables import make_result
 
@@ -60,10 +60,12 @@ def minimize_energy(
     *,
     offset,
     initial=None,
-    tol=1e-8,
+    tol=None,
     max_iter=5000,
     callback=None,
     restart_every=200,
+    device=None,
+    dtype=None,
 ):
     """Solve a smooth-interaction contact state at fixed ``offset``.
 
@@ -78,22 +80,28 @@ def minimize_energy(
         Offset ``d`` (length); gap ``g = d - h + w``.
     initial : ContactResult or array, optional
         Warm start (its deflection).
-    tol : float
+    tol : float, optional
         Tolerance on ``max |K w - p_int| / E*`` (see module docstring).
+        Default 1e-8 (float64) or 1e-6 (float32, also the smallest allowed there).
     max_iter : int
         Iteration cap; reaching it returns ``converged=False``.
     callback : callable, optional
         ``callback(iteration, residual)``; return True to stop.
     restart_every : int
         Steepest-descent restart period of the conjugate directions.
+    device : {None, "cpu", "cuda", "cuda:N"}, optional
+        Where to compute (default: where ``heights`` live); see :func:`roughcontact.to_device`.
+    dtype : {None, "float64", "float32"}, optional
+        Precision of the computation (default float64). float32 halves memory and
+        time on a GPU; its accuracy floor is documented in the README.
 
     Returns
     -------
     ContactResult
     """
     t_start = time.perf_counter()
-    h = check_problem(heights, substrate, tol, offset)
-    offset, tol = float(offset), float(tol)
+    h, tol = check_problem(heights, substrate, tol, offset, device, dtype)
+    offset = float(offset)
     shape = h.shape
     n = h.size
     es = substrate.contact_modulus
@@ -111,7 +119,7 @@ def minimize_energy(
         if rigid:
             w -= xp.mean(w)
     else:
-        w = xp.zeros(n, dtype=xp.float64)
+        w = xp.zeros(n, dtype=h.dtype)
     kw = elastic_pressure(w)
 
     def gradient(gap):
@@ -126,6 +134,7 @@ def minimize_energy(
     s = ks = z_old = None
     gz_old = 1.0
     converged, message, residual, it = False, "iteration cap reached", math.inf, 0
+    stall = StallGuard(dtype_name(h))
     while True:
         residual = float(xp.max(xp.abs(gr))) / es
         if not math.isfinite(residual):
@@ -133,6 +142,9 @@ def minimize_energy(
             break
         if residual <= tol:
             converged, message = True, "converged"
+            break
+        if (stalled := stall(residual)) is not None:
+            message = stalled
             break
         if it >= max_iter:
             break

@@ -1,0 +1,61 @@
+"""The core on CuPy arrays (an NVIDIA GPU): the same states as on NumPy.
+
+Marked ``gpu`` and skipped where CuPy or a GPU is missing; CI never needs one.
+"""
+
+import numpy as np
+import pytest
+
+import roughcontact as rc
+
+cupy = pytest.importorskip("cupy")
+try:
+    _GPUS = cupy.cuda.runtime.getDeviceCount()
+except Exception:  # no driver
+    _GPUS = 0
+pytestmark = [pytest.mark.gpu, pytest.mark.skipif(_GPUS == 0, reason="no CUDA device")]
+
+N = 128
+H = rc.self_affine((N, N), hurst=0.8, rms_slope=0.1, short_cutoff=4, seed=7)
+SUB = rc.Substrate((N, N))
+
+
+def test_substrate_operators_on_the_gpu():
+    p = np.random.default_rng(0).normal(size=(N, N))
+    w = SUB.deflection(cupy.asarray(p))
+    assert isinstance(w, cupy.ndarray)
+    np.testing.assert_allclose(w.get(), SUB.deflection(p), rtol=1e-12, atol=1e-14)
+
+
+@pytest.mark.parametrize(
+    ("law", "control"),
+    [
+        (rc.HardWall(), {"load": 2e-3}),
+        (rc.HardWall(), {"offset": float(H.max()) - 0.3 * float(H.std())}),
+        (rc.SmoothLJ93.from_adhesion_length(0.005), {"offset": float(H.max()) + 0.8}),
+        (rc.Exponential(work_of_adhesion=0.005, range=0.5), {"offset": float(H.max()) - 0.1}),
+    ],
+    ids=["hardwall-load", "hardwall-offset", "lj93smooth", "exponential"],
+)
+@pytest.mark.parametrize("how", ["device", "cupy-input"])
+def test_gpu_states_equal_the_cpu_ones(law, control, how):
+    ref = rc.solve(H, SUB, law, tol=1e-10, **control)
+    if how == "device":
+        got = rc.solve(H, SUB, law, tol=1e-10, device="cuda", **control)
+    else:
+        got = rc.solve(cupy.asarray(H), SUB, law, tol=1e-10, **control)
+    assert got.converged, got.message
+    assert isinstance(got.pressure, np.ndarray)  # the record is NumPy (an edge)
+    np.testing.assert_allclose(got.pressure, ref.pressure, rtol=1e-7, atol=1e-10 * abs(ref.load))
+    assert got.offset == pytest.approx(ref.offset, abs=1e-9)
+
+
+def test_gpu_path_and_float32():
+    law = rc.SmoothLJ93.from_adhesion_length(0.005)
+    offsets = float(H.max()) + 1.0 - np.array([0.0, 0.1, 0.2])
+    ref = rc.approach_retract(H, SUB, law, offsets=offsets)
+    got = rc.approach_retract(H, SUB, law, offsets=offsets, device="cuda")
+    assert got.attrs["device"].startswith("<CUDA Device") or "cuda" in got.attrs["device"].lower()
+    np.testing.assert_allclose(got["load"], ref["load"], rtol=1e-8, atol=1e-12)
+    single = rc.approach_retract(H, SUB, law, offsets=offsets, device="cuda", dtype="float32")
+    np.testing.assert_allclose(single["load"], ref["load"], rtol=1e-4, atol=1e-6)

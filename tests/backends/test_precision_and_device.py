@@ -1,0 +1,98 @@
+"""float32 option and device selection (CPU side; the GPU tests are in test_cupy.py).
+
+Oracle: the float64 solution of the same problem. The single-precision floor
+(residuals stall at 3e-7 to 6e-7, so tol >= 1e-6) was measured on 256² problems; here the
+float32 states must agree with float64 to the accuracy that tolerance implies.
+"""
+
+import numpy as np
+import pytest
+
+import roughcontact as rc
+from roughcontact._backend import to_device
+
+N = 64
+H = rc.self_affine((N, N), hurst=0.8, rms_slope=0.1, short_cutoff=4, seed=11)
+SUB = rc.Substrate((N, N))
+# offsets a few tenths of the rms height into contact (the LJ wall's equilibrium gap is a0)
+D_LJ = float(H.max()) + 1.0 - 0.3 * float(H.std())
+D_HARD = float(H.max()) - 0.3 * float(H.std())
+
+CASES = [
+    ("hardwall", rc.HardWall(), {"load": 5e-3}),
+    ("lj93smooth", rc.SmoothLJ93.from_adhesion_length(0.005), {"offset": D_LJ}),
+    ("exponential", rc.Exponential(work_of_adhesion=0.005, range=0.5), {"offset": D_HARD}),
+    ("exponential-load", rc.Exponential(work_of_adhesion=0.005, range=0.5), {"load": 1e-3}),
+]
+
+
+@pytest.mark.parametrize(("name", "law", "control"), CASES, ids=[c[0] for c in CASES])
+def test_float32_agrees_with_float64(name, law, control):
+    ref = rc.solve(H, SUB, law, tol=1e-10, **control)
+    got = rc.solve(H, SUB, law, dtype="float32", **control)
+    assert got.converged, got.message
+    assert got.tol == 1e-6  # the float32 default
+    assert got.pressure.dtype == np.float32
+    err = np.linalg.norm(got.pressure - ref.pressure) / np.linalg.norm(ref.pressure)
+    assert err < (2e-4 if "load" in control else 2e-5)  # load control: |ΔN| <= tol E*
+    assert got.load == pytest.approx(ref.load, rel=1e-4, abs=got.tol)  # tol is in E*
+    assert abs(got.repulsive_area - ref.repulsive_area) <= 2.0 / N**2
+
+
+def test_float32_rejects_a_tolerance_below_its_floor():
+    with pytest.raises(rc.ParameterError, match=r"tol must be >= 1e-06 with dtype='float32'"):
+        rc.solve(H, SUB, rc.HardWall(), load=1e-3, dtype="float32", tol=1e-8)
+    with pytest.raises(rc.ParameterError, match="dtype must be one of float64, float32"):
+        rc.solve(H, SUB, rc.HardWall(), load=1e-3, dtype="float16")
+
+
+def test_float32_stops_at_its_rounding_floor_and_says_so():
+    # full contact at a mean pressure ~ E*: float32 cannot resolve 1e-6 E* of imbalance
+    law = rc.SmoothLJ93.from_adhesion_length(0.005)
+    deep = float(H.max()) - float(H.std())  # N/A0 = 2.6 E*
+    assert rc.solve(H, SUB, law, offset=deep).converged  # float64 can
+    res = rc.solve(H, SUB, law, offset=deep, dtype="float32", max_iter=5000)
+    assert not res.converged and res.iterations < 1000
+    assert "float32 rounding floor" in res.message
+
+
+def test_float32_path_records_its_precision():
+    law = rc.SmoothLJ93.from_adhesion_length(0.005)
+    offsets = D_LJ + np.array([0.4, 0.2, 0.0])
+    ref = rc.approach_retract(H, SUB, law, offsets=offsets, tol=1e-8)
+    got = rc.approach_retract(H, SUB, law, offsets=offsets, dtype="float32")
+    assert got.attrs["dtype"] == "float32" and ref.attrs["dtype"] == "float64"
+    assert got.attrs["device"] == "cpu"
+    np.testing.assert_allclose(got["load"], ref["load"], rtol=1e-4, atol=1e-9)
+
+
+def test_float64_is_the_default_even_for_float32_heights():
+    res = rc.solve(H.astype(np.float32), SUB, rc.HardWall(), load=5e-3)
+    assert res.pressure.dtype == np.float64 and res.tol == 1e-8
+
+
+def test_to_device():
+    xp = pytest.importorskip("array_api_strict")
+    a = xp.asarray(H)
+    back = to_device(a, "cpu")
+    assert isinstance(back, np.ndarray) and np.array_equal(back, H)
+    assert to_device(H) is H  # nothing to do: no copy
+    assert to_device(H, dtype="float32").dtype == np.float32
+    assert to_device([[1, 2], [3, 4]]).dtype == np.float64
+    assert type(to_device(a)) is type(a)  # None keeps the namespace
+    with pytest.raises(rc.ParameterError, match="device must be 'cpu', 'cuda' or 'cuda:N'"):
+        to_device(H, "gpu")
+    with pytest.raises(rc.ParameterError, match="device must be"):
+        to_device(H, 0)
+
+
+def test_cuda_without_a_gpu_is_a_clear_error():
+    try:
+        import cupy
+
+        if cupy.cuda.runtime.getDeviceCount() > 0:
+            pytest.skip("a GPU is present")
+    except Exception:
+        pass
+    with pytest.raises(rc.ParameterError, match="device='cuda'"):
+        rc.solve(H, SUB, rc.HardWall(), load=1e-3, device="cuda")
