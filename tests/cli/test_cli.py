@@ -132,7 +132,48 @@ def test_surface_bad_hurst(tmp_path):
     assert r.exit_code == 2 and "hurst" in r.output
 
 
-def test_demo_small_json(tmp_path):
+def _spy_figure1(monkeypatch):
+    """Record the maps given to Fig. 1 and the figure drawn from them."""
+    import roughcontact.plot.figures as figures
+
+    calls, real = [], figures.figure1
+
+    def spy(maps, **kwargs):
+        fig = real(maps, **kwargs)
+        calls.append((list(maps), kwargs, fig))
+        return fig
+
+    monkeypatch.setattr(figures, "figure1", spy)
+    return calls
+
+
+def _assert_figure1_shows_the_maps(calls, study, directory):
+    """Fig. 1: one map per ℓa of one seed, at the approach step nearest A_rep = 2 %."""
+    ((maps, kwargs, fig),) = calls
+    assert kwargs["target_area"] == 0.02
+    la = [json.loads(m.attrs["task_parameters"])["adhesion_length"] for m in maps]
+    assert la == [0.0005, 0.002, 0.005, 0.02] and {m.attrs["seed"] for m in maps} == {1}
+    for ds, ax, row in zip(maps, fig.axes, study["contact_maps"], strict=True):
+        # only the pressure of one step is kept: the approach step nearest 2 % of A0
+        assert "gap" not in ds and ds.sizes["field_step"] == 1
+        approach = ds["repulsive_area"].values[ds["branch"].values == "approach"]
+        assert int(ds["field_step"][0]) == int(np.argmin(np.abs(approach - 0.02)))
+        p = ds["pressure"].values[0]
+        assert (p > 0).mean() == approach[int(ds["field_step"][0])] == row["repulsive_area"]
+        # the panel's pixels are the task file's sites: 2 repulsive, 1 attractive, 0 none
+        expect = np.where(p > 0, 2, np.where(p < 0, 1, 0))
+        np.testing.assert_array_equal(ax.images[0].get_array().T, expect)
+        assert (p < 0).any() and row["attractive_area"] == (p < 0).mean() > 0
+    for fmt, magic in (("png", b"\x89PNG"), ("pdf", b"%PDF-")):
+        path = directory / "figures" / f"fig1_contact_maps.{fmt}"
+        assert str(path) in study["figures"]["fig1_contact_maps"]
+        assert path.read_bytes().startswith(magic)
+    report = (directory / "report.md").read_text()
+    assert "figures/fig1_contact_maps.png" in report and "Fig. 1: contact maps of seed 1" in report
+
+
+def test_demo_small_json(tmp_path, monkeypatch):
+    calls = _spy_figure1(monkeypatch)
     args = ["demo", "--size", "128", "--study-size", "64", "--seeds", "2", "--json"]
     r = CliRunner().invoke(main, [*args, "-o", str(tmp_path / "demo")])
     assert r.exit_code == 0, r.output
@@ -149,9 +190,22 @@ def test_demo_small_json(tmp_path):
     report = (tmp_path / "demo" / "report.md").read_text()
     assert "κ_att" in report and "fig2" in report
     assert (tmp_path / "demo" / "demo.nc").exists()
+    _assert_figure1_shows_the_maps(calls, study, tmp_path / "demo")
     # a second run resumes: nothing is recomputed
     r = CliRunner().invoke(main, [*args, "-o", str(tmp_path / "demo")])
     assert r.exit_code == 0 and json.loads(r.stdout)["study"]["tasks"] == 8
+
+
+def test_demo_into_a_directory_in_use_fails(tmp_path):
+    from roughcontact.studies.lock import directory_lock
+
+    out = tmp_path / "demo"
+    args = ["demo", "--size", "32", "--study-size", "32", "--seeds", "1", "-o", str(out)]
+    with directory_lock(out):  # as another demo writing there holds it
+        r = CliRunner().invoke(main, args)
+    assert r.exit_code == 2 and "in use by another roughcontact run" in r.output, r.output
+    assert str(out / ".roughcontact.lock") in r.output and "'roughcontact demo' again" in r.output
+    assert not (out / "tasks").exists()
 
 
 def test_path_lj93smooth_json(surface_file, tmp_path):

@@ -92,6 +92,11 @@ def test_kill_9_then_resume_equals_an_uninterrupted_run(tmp_path, make_study):
     while not list(out.glob("task-*.nc")) and proc.poll() is None:
         assert time.monotonic() < deadline, "no task finished within 60 s"
         time.sleep(0.02)
+    # a second run into the directory that the first is writing fails at once, naming it
+    second = ["study", "run", str(study), "-o", str(out), "--resume", "--no-progress"]
+    r = CliRunner().invoke(main, second)
+    assert r.exit_code == 2 and len(r.output.strip().splitlines()) == 1, r.output
+    assert all(w in r.output for w in (str(out), f"PID {proc.pid} ", ".roughcontact.lock"))
     os.kill(proc.pid, signal.SIGKILL)
     proc.wait()
     finished = len(list(out.glob("task-*.nc")))

@@ -81,6 +81,24 @@ def test_collect_is_deterministic_and_pads_steps(tmp_path, cluster_address, make
     xr.testing.assert_identical(xr.load_dataset(tmp_path / "all.nc", engine="h5netcdf"), a)
 
 
+def test_fields_at_area_keeps_the_approach_states_nearest_the_areas(tmp_path, make_study):
+    extra = "[output]\nfields_at = [0]\nfields_at_area = [0.02, 0.05]\nfields = ['pressure']"
+    out = tmp_path / "out"
+    run_study(make_study(size=64, extra=extra), out, scheduler="synchronous", progress=False)
+    for path in sorted(out.glob("task-*.nc")):
+        with xr.open_dataset(path, engine="h5netcdf") as ds:
+            assert "gap" not in ds and "deflection" not in ds
+            approach = ds["repulsive_area"].values[ds["branch"].values == "approach"]
+            nearest = {int(np.argmin(np.abs(approach - a))) for a in (0.02, 0.05)}
+            steps = ds["field_step"].values.tolist()
+            assert steps == sorted({0} | nearest)
+            p = ds["pressure"].values
+            np.testing.assert_array_equal((p > 0).mean(axis=(1, 2)), ds["repulsive_area"][steps])
+        with h5netcdf.File(path, "r") as f:  # the maps are stored compressed
+            assert f.variables["pressure"].compression == "gzip"
+            assert f.variables["load"].compression is None
+
+
 def _strip_marker(path):
     with h5netcdf.File(path, "a") as f:
         del f.attrs[MARKER]

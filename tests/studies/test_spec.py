@@ -56,6 +56,8 @@ def with_(section, **values):
             ["unit", "'modulus'", "'length', 'rms_height', 'bearing_area'"],
         ),
         ({**base(), "cases": [{"hurst": [0.3]}]}, ["[[cases]] #1", "hurst", "wrong type"]),
+        (with_("output", fields_at_area=[0.02, 1.0]), ["fields_at_area", "1.0", "(0, 1)"]),
+        (with_("output", fields_at_area=0.02), ["fields_at_area", "0.02", "expected a list"]),
     ],
 )
 def test_bad_study_names_key_value_and_range(data, words):
@@ -90,6 +92,18 @@ def test_grid_expansion_count_and_order(tmp_path, make_study):
     p = spec.tasks[0].params  # derived interaction values are filled in
     assert p["long_cutoff"] == 16.0 and p["stiffness"] == 0.5
     assert p["range"] == pytest.approx((24 * 0.005) ** 0.5)
+
+
+def test_fields_at_area_leaves_the_keys_of_other_studies_alone():
+    # the key of base()'s task before [output] fields_at_area existed: directories
+    # written then must still --resume
+    spec = study_from_dict(base())
+    assert spec.tasks[0].key == "9df334700c1c6b4e970ec7e41acbfeacfa3b0eac5b018f3d5209383f4890c9da"
+    assert "fields_at_area" not in spec.settings["output"]
+    assert study_from_dict(with_("output", fields_at_area=[])).tasks[0].key == spec.tasks[0].key
+    maps = study_from_dict(with_("output", fields_at_area=[0.02, 0.05]))
+    assert maps.settings["output"]["fields_at_area"] == [0.02, 0.05]
+    assert maps.tasks[0].key != spec.tasks[0].key
 
 
 def test_cases_times_grid_times_seeds():

@@ -311,6 +311,6 @@ def save_figures(dataset, out_dir, formats=("png", "pdf"), *, maps=None, dpi=150
         written[name] = []
         for fmt in formats:
             path = out / f"{name}.{fmt}"
-            fig.savefig(path, format=fmt, dpi=dpi)
+            fig.savefig(path, format=fmt, dpi=dpi, bbox_inches="tight")
             written[name].append(path)
     return written

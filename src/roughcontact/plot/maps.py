@@ -140,8 +140,10 @@ def figure1(maps, *, labels=None, target_area=0.02, region=None):
         loc="outside lower center",
         ncols=2,
         fontsize=8,
+        # the figure's title goes here: a suptitle collides with the two-line panel titles
+        title=f"Fig. 1: contact maps at A_rep/A0 ≈ {target_area:g}",
+        title_fontsize=9,
     )
-    fig.suptitle(f"Fig. 1: contact maps at A_rep/A0 ≈ {target_area:g}", fontsize=10)
     return fig
 
 

@@ -9,11 +9,13 @@ Dask and xarray are imported only when a study runs or is collected.
 """
 
 from .collect import collect_study
+from .lock import DirectoryLocked
 from .runner import StudySummary, run_study
 from .spec import StudySpec, Task, load_study, study_from_dict
 from .task import run_task
 
 __all__ = [
+    "DirectoryLocked",
     "StudySpec",
     "StudySummary",
     "Task",

@@ -12,10 +12,13 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from .._validate import ParameterError
-from . import cluster, store
+from . import cluster, lock, store
 from .spec import StudySpec, load_study
 
 __all__ = ["StudySummary", "run_study"]
+
+# how to proceed when the directory is locked (appended to the error)
+_LOCKED_HINT = "continue the study with --resume (resume=True) or choose another directory"
 
 
 @dataclass(frozen=True)
@@ -106,6 +109,9 @@ def run_study(study, out_dir, *, resume=False, scheduler=None, workers=None, pro
         A validated study or its TOML file (validated before anything else happens).
     out_dir : path-like
         Study directory (created). Without ``resume`` it must not hold a study yet.
+        The run holds its lock (:mod:`.lock`) throughout: a second run into the same
+        directory raises :class:`~.lock.DirectoryLocked` at once, while the lock of a
+        killed run is gone with its process and does not block ``resume``.
     resume : bool
         Skip tasks whose file is finished (opens, has the completion marker and the
         task's parameter hash); recompute missing, partial, corrupt and failed ones.
@@ -121,6 +127,11 @@ def run_study(study, out_dir, *, resume=False, scheduler=None, workers=None, pro
     Returns
     -------
     StudySummary
+
+    Raises
+    ------
+    DirectoryLocked
+        Another process is running a study in ``out_dir``.
     """
     t0 = time.perf_counter()
     spec = study if isinstance(study, StudySpec) else load_study(study)
@@ -131,11 +142,14 @@ def run_study(study, out_dir, *, resume=False, scheduler=None, workers=None, pro
     out = Path(out_dir)
     if out.exists() and not out.is_dir():
         raise ParameterError(f"output {str(out)!r} exists and is not a directory")
-    if not resume and store.existing_results(out):
-        raise ParameterError(
-            f"{str(out)!r} already holds study results; pass --resume (resume=True) to "
-            "continue that study, or choose another directory"
-        )
+    # taken before anything is read or written, so that a second run fails at once
+    # and never deletes the first one's files in progress
+    with lock.directory_lock(out, hint=_LOCKED_HINT):
+        return _run_locked(spec, out, resume, scheduler, workers, progress, t0)
+
+
+def _pending(spec, out, resume):
+    """``(done, todo)``: attributes of the finished tasks by id, the tasks left to run."""
     done, todo = {}, []
     for task in spec.tasks:
         ok, info = store.check_task(out, task) if resume else (False, "")
@@ -143,6 +157,17 @@ def run_study(study, out_dir, *, resume=False, scheduler=None, workers=None, pro
             done[task.id] = info
         else:
             todo.append(task)
+    return done, todo
+
+
+def _run_locked(spec, out, resume, scheduler, workers, progress, t0):
+    """:func:`run_study` once the directory's lock is held."""
+    if not resume and store.existing_results(out):
+        raise ParameterError(
+            f"{str(out)!r} already holds study results; pass --resume (resume=True) to "
+            "continue that study, or choose another directory"
+        )
+    done, todo = _pending(spec, out, resume)
     client = local = None
     if todo and scheduler != "synchronous":
         client, local = cluster.connect(scheduler, workers)  # an unreachable scheduler fails here

@@ -119,6 +119,9 @@ SCHEMA = {
     },
     "output": {
         "fields_at": _k(int, "a list of step indices", None, (), False, True),
+        "fields_at_area": _k(
+            float, "a list of A_rep/A0 in (0, 1)", lambda v: 0 < v < 1, (), False, True
+        ),
         "fields": _k(
             str, "a list from " + ", ".join(FIELDS), lambda v: v in FIELDS, FIELDS, False, True
         ),

@@ -101,7 +101,7 @@ def _section(data, name, where=None):
             _fail(f"unknown key {key!r} in {where}; accepted: {', '.join(allowed)}")
         spec = allowed[key]
         if isinstance(value, list) and (spec.is_list or (spec.sweep and name != "cases")):
-            if not value and key not in ("fields_at", "lead_in"):
+            if not value and key not in ("fields_at", "fields_at_area", "lead_in"):
                 _fail(f"{where} {key} = [] is empty: give at least one value")
             out[key] = [_value(where, key, spec, v) for v in value]
         elif spec.is_list:
@@ -207,6 +207,11 @@ def _settings(sections) -> dict:
             )
     out["output"]["fields"] = list(out["output"]["fields"])
     out["output"]["fields_at"] = list(out["output"]["fields_at"])
+    # settings enter every task's key: a study that does not use this later key keeps
+    # the keys it had, so its directories written before it existed still --resume
+    areas = list(out["output"].pop("fields_at_area"))
+    if areas:
+        out["output"]["fields_at_area"] = areas
     return out
 
 

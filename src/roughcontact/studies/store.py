@@ -7,6 +7,7 @@ Layout of a study directory::
     task-00000.nc               one finished task (path + provenance + analysis)
     task-00001.failed.json      one failed task (reason and traceback)
     .task-00002.nc.<id>.tmp     a write in progress (removed when a run starts)
+    .roughcontact.lock          the lock of the run writing here (:mod:`.lock`)
 
 A task file is written to a temporary name in the same directory, the completion marker
 attribute :data:`MARKER` is added last, the file is fsync'ed and then renamed over its
@@ -24,6 +25,7 @@ import uuid
 from pathlib import Path
 
 from .._validate import ParameterError
+from .schema import FIELDS
 
 __all__ = [
     "MANIFEST",
@@ -40,6 +42,7 @@ __all__ = [
 MARKER = "roughcontact_task_complete"
 MANIFEST = "study.json"
 _TMP = ".tmp"
+_COMPRESSION = {"zlib": True, "complevel": 4}
 
 
 def task_path(out_dir, task_id: str) -> Path:
@@ -92,12 +95,21 @@ def _write_json(final: Path, obj) -> Path:
     return atomic_write(final, write)
 
 
+def _field_encoding(ds) -> dict:
+    """Lossless compression of the contact maps, most of whose sites are exactly zero.
+
+    A 256² pressure map at 2 % contact shrinks from 530 kB to about 60 kB; the per-step
+    curves are left as they are (small, and read by every resume check).
+    """
+    return {name: dict(_COMPRESSION) for name in FIELDS if name in ds.variables}
+
+
 def write_task(out_dir, task, ds) -> Path:
     """Write a finished task atomically; the completion marker is the last thing written."""
     import h5netcdf
 
     def write(tmp):
-        ds.to_netcdf(tmp, engine="h5netcdf")
+        ds.to_netcdf(tmp, engine="h5netcdf", encoding=_field_encoding(ds))
         with h5netcdf.File(tmp, "a") as f:
             f.attrs[MARKER] = time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())
 

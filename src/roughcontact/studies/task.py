@@ -20,10 +20,10 @@ import traceback
 import numpy as np
 
 from .._validate import ParameterError
-from .schema import make_interaction
+from .schema import FIELDS, make_interaction
 from .spec import Task
 
-__all__ = ["compute_task", "path_values", "run_task"]
+__all__ = ["AreaFields", "compute_task", "path_values", "run_task", "with_fields"]
 
 
 def path_values(path: dict, heights, law, params: dict) -> np.ndarray:
@@ -63,6 +63,68 @@ def path_values(path: dict, heights, law, params: dict) -> np.ndarray:
     return values * scale * params["contact_modulus"]
 
 
+class AreaFields:
+    """Progress callback that keeps the fields of the approach states nearest given areas.
+
+    For each target A_rep/A0 the approach step whose repulsive area is closest (the first
+    on a tie) keeps its pressure, gap and deflection, as :func:`~roughcontact.plot.figure1`
+    would pick it among stored steps. Only the best state so far is held per target, so
+    the memory does not grow with the path (the paper's grids hold 4096² sites).
+
+    Parameters
+    ----------
+    targets : sequence of float
+        Repulsive areas per A0 (``[output] fields_at_area``).
+    approach_steps : int
+        Number of approach steps (lead-in included); retraction steps are not considered.
+    """
+
+    def __init__(self, targets, approach_steps: int):
+        self.targets = [float(t) for t in targets]
+        self.approach_steps = int(approach_steps)
+        self._best = {}  # target -> (distance, step, (pressure, gap, deflection))
+
+    def __call__(self, step, n_steps, result):
+        """``approach_retract``'s ``progress(step, n_steps, result)``; ``step`` counts from 1."""
+        index = step - 1
+        if not self.targets or index >= self.approach_steps:
+            return
+        # the sites Fig. 1 paints orange (p > 0), so that its choice is this one
+        area = float(np.count_nonzero(result.pressure > 0)) / result.pressure.size
+        for target in self.targets:
+            distance = abs(area - target)
+            if target not in self._best or distance < self._best[target][0]:
+                self._best[target] = (
+                    distance,
+                    index,
+                    (result.pressure, result.gap, result.deflection),
+                )
+
+    def fields(self) -> dict:
+        """``{step: (pressure, gap, deflection)}`` of the chosen states."""
+        return {step: arrays for _, step, arrays in self._best.values()}
+
+
+def with_fields(ds, extra: dict):
+    """``ds`` with the fields ``{step: (pressure, gap, deflection)}`` added on ``field_step``.
+
+    Steps already stored (``fields_at``) are kept; the result has the layout of
+    :func:`roughcontact.approach_retract`'s fields, sorted by step.
+    """
+    if not extra:
+        return ds
+    fields = dict(extra)
+    if "field_step" in ds.coords:
+        for k, step in enumerate(ds["field_step"].values):
+            fields[int(step)] = tuple(np.asarray(ds[name].values[k]) for name in FIELDS)
+        ds = ds.drop_vars([*FIELDS, "field_step"])
+    steps = sorted(fields)
+    ds = ds.assign_coords(field_step=steps)
+    for i, name in enumerate(FIELDS):
+        ds[name] = (("field_step", "x", "y"), np.stack([fields[s][i] for s in steps]))
+    return ds
+
+
 def compute_task(task: Task):
     """Run one task in this process and return its dataset (path, provenance, analysis)."""
     from ..analysis.path_analysis import analyze_path
@@ -94,6 +156,7 @@ def compute_task(task: Task):
     )
     law = make_interaction(p)
     values = path_values(s["path"], heights, law, p)
+    nearest = AreaFields(s["output"].get("fields_at_area", ()), approach_steps=len(values))
     t1 = time.perf_counter()
     ds = approach_retract(
         heights,
@@ -103,15 +166,11 @@ def compute_task(task: Task):
         tol=s["solver"]["tol"],
         max_iter=s["solver"]["max_iter"],
         fields_at=s["output"]["fields_at"],
+        progress=nearest,
         **{f"{s['path']['control']}s": values},
     )
-    ds = ds.drop_vars(
-        [
-            f
-            for f in ("pressure", "gap", "deflection")
-            if f in ds.variables and f not in s["output"]["fields"]
-        ]
-    )
+    ds = with_fields(ds, nearest.fields())
+    ds = ds.drop_vars([f for f in FIELDS if f in ds.variables and f not in s["output"]["fields"]])
     t2 = time.perf_counter()
     try:
         analysis, error = analyze_path(ds, **s["analysis"]).to_dict(), ""
