@@ -23,6 +23,7 @@ _SCALARS = (
     "attractive_area",
     "perimeter",
     "perimeter_edges",
+    "corrected_repulsive_area",
     "mean_gap",
     "iterations",
     "residual",
@@ -88,8 +89,9 @@ def approach_retract(
     -------
     xarray.Dataset
         Indexed by ``step``: offset, load, repulsive/attractive load and area, mean gap,
-        perimeter, iterations, residual, converged, solve_seconds, repulsive_patches
-        (number of connected repulsive patches, periodic), branch ("approach"/"retract"),
+        perimeter, corrected_repulsive_area (Yastrebov et al. 2017), iterations,
+        residual, converged, solve_seconds, repulsive_patches (number of connected
+        repulsive patches, periodic), branch ("approach"/"retract"),
         jump; attrs: the provenance of :func:`provenance` (surface statistics,
         substrate, interaction parameters) and ``pull_off`` (per A0, >= 0: magnitude of the
         most negative load on retraction), ``all_converged``. Loads and areas per A0.

@@ -101,6 +101,7 @@ class ContactResult:
             "attractive_area",
             "perimeter",
             "perimeter_edges",
+            "corrected_repulsive_area",
             "mean_gap",
             "iterations",
             "converged",

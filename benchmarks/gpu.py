@@ -1,0 +1,234 @@
+"""GPU benchmark (issue 6): roughcontact on CuPy against its own FFT floor and the CPU.
+
+For every grid size n (default 1024 2048 4096 8192) on one surface per size (H = 0.8,
+h'rms = 0.1, lambda_s = 8, lambda_L = n/2, fixed seed; E* = a0 = 1):
+
+* ``fft``: median time of one forward + inverse real FFT pair (``rfft2`` + ``irfft2``)
+  of an n x n float array on the device, synchronised -- the floor of one iteration;
+* ``hardwall``: the Polonsky-Keer solve at mean pressure ``--load`` (default 1e-3 E*),
+  cold start; time, iterations, ms per iteration and that divided by the FFT pair
+  (SPEC target <= 2);
+* ``adhesive``: one displacement-controlled state of the paper's potential
+  (``rc.SmoothLJ93.from_adhesion_length(--adhesion-length)``) at the offset where the
+  hard wall carries ``--end-load``, cold start; the same columns;
+* peak device memory during each solve, in units of one n x n float64 array (CuPy's
+  memory pool, sampled every iteration; on the CPU: not measured).
+
+Then the paper-scale path (``--path-size``, default 4096): approach in ``--path-steps``/2
+equal offset steps from first contact (summit at the equilibrium distance a0) to the
+offset where the hard wall carries ``--end-load`` plus a0, and back (40 steps, 41 states
+by default), each warm-started, with the paper's potential; total wall time
+(target: under 2 minutes on one H100). ``--cpu-sizes`` reruns the single solves on the
+CPU (NumPy, scipy.fft on all cores) for the GPU/CPU ratio; ``--cpu-path`` also the path.
+
+    python benchmarks/gpu.py                                  # on a GPU: everything
+    python benchmarks/gpu.py --device cpu --sizes 256 --path-size 256 --cpu-sizes
+                                                              # dry run without a GPU
+    python benchmarks/gpu.py --dtype float32 --json gpu32.json
+
+Surface generation and the hard-wall solve that fixes the offsets are never timed; each
+size starts with an untimed warm-up solve on the device (CUDA context, cuFFT plans,
+kernel compilation).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import platform
+import sys
+import time
+
+import numpy as np
+from hardwall import n_cores, surface
+
+import roughcontact as rc
+
+A0 = ES = 1.0
+
+
+def _xp(device: str):
+    if device == "cpu":
+        return None
+    import cupy
+
+    return cupy
+
+
+def sync(device: str) -> None:
+    if device != "cpu":
+        import cupy
+
+        cupy.cuda.Stream.null.synchronize()
+
+
+def fft_pair_seconds(n: int, device: str, dtype: str, repeats: int = 9) -> float:
+    """Median time of one rfft2 + irfft2 pair of an n x n array on ``device``."""
+    from roughcontact._backend import irfft2, rfft2
+
+    x = rc.to_device(np.random.default_rng(0).standard_normal((n, n)), device, dtype)
+    irfft2(rfft2(x), (n, n))
+    sync(device)
+    times = []
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        irfft2(rfft2(x), (n, n))
+        sync(device)
+        times.append(time.perf_counter() - t0)
+    return float(np.median(times))
+
+
+class MemoryPeak:
+    """Peak bytes in use in CuPy's default pool, sampled by the solver callback."""
+
+    def __init__(self, device: str):
+        self.pool = None if device == "cpu" else _xp(device).get_default_memory_pool()
+        self.peak = 0
+
+    def __call__(self, iteration=None, residual=None):
+        if self.pool is not None:
+            self.peak = max(self.peak, self.pool.used_bytes())
+        return False
+
+
+def timed_solve(h, sub, law, device, dtype, **control) -> dict:
+    peak = MemoryPeak(device)
+    sync(device)
+    t0 = time.perf_counter()
+    res = rc.solve(h, sub, law, device=device, dtype=dtype, callback=peak, **control)
+    seconds = time.perf_counter() - t0  # the result record is NumPy: already synchronised
+    return {
+        "seconds": seconds,
+        "iterations": res.iterations,
+        "converged": res.converged,
+        "repulsive_area": res.repulsive_area,
+        "peak_bytes": peak.peak or None,
+    }
+
+
+def bench_size(n: int, args, device: str) -> dict:
+    h = surface(n, args.seed)
+    sub = rc.Substrate((n, n), contact_modulus=ES, pixel_size=A0)
+    law = rc.SmoothLJ93.from_adhesion_length(args.adhesion_length)
+    d_hw = rc.solve(h, sub, rc.HardWall(), load=args.end_load).offset  # untimed, CPU
+    h_dev = rc.to_device(h, device, args.dtype)
+    rc.solve(h_dev[:64, :64], rc.Substrate((64, 64)), rc.HardWall(), load=args.load)  # warm-up
+    row = {"n": n, "device": device, "dtype": args.dtype}
+    row["fft_seconds"] = fft_pair_seconds(n, device, args.dtype)
+    grid_bytes = n * n * 8
+    for name, lw, control in (
+        ("hardwall", rc.HardWall(), {"load": args.load}),
+        ("adhesive", law, {"offset": d_hw + A0}),
+    ):
+        runs = [timed_solve(h_dev, sub, lw, device, args.dtype, **control)]
+        runs += [
+            timed_solve(h_dev, sub, lw, device, args.dtype, **control)
+            for _ in range(args.repeats - 1)
+        ]
+        r = dict(runs[0])
+        r["seconds"] = float(np.median([x["seconds"] for x in runs]))
+        r["ms_per_iteration"] = 1e3 * r["seconds"] / max(r["iterations"], 1)
+        r["iteration_over_fft"] = r["ms_per_iteration"] / (1e3 * row["fft_seconds"])
+        r["peak_arrays"] = r["peak_bytes"] / grid_bytes if r["peak_bytes"] else None
+        row[name] = r
+    return row
+
+
+def bench_path(n: int, args, device: str) -> dict:
+    h = surface(n, args.seed)
+    sub = rc.Substrate((n, n), contact_modulus=ES, pixel_size=A0)
+    law = rc.SmoothLJ93.from_adhesion_length(args.adhesion_length)
+    d_hw = rc.solve(h, sub, rc.HardWall(), load=args.end_load).offset  # untimed
+    d_start, d_end = float(h.max()) + A0, d_hw + A0
+    half = args.path_steps // 2
+    offsets = d_start - (d_start - d_end) * np.arange(0, half + 1) / half  # 2 half + 1 states
+    h_dev = rc.to_device(h, device, args.dtype)
+    sync(device)
+    t0 = time.perf_counter()
+    ds = rc.approach_retract(h_dev, sub, law, offsets=offsets, dtype=args.dtype)
+    seconds = time.perf_counter() - t0
+    return {
+        "n": n,
+        "device": device,
+        "dtype": args.dtype,
+        "steps": int(ds.sizes["step"]),
+        "seconds": seconds,
+        "iterations": int(ds["iterations"].sum()),
+        "all_converged": bool(ds.attrs["all_converged"]),
+        "pull_off": float(ds.attrs["pull_off"]),
+        "max_repulsive_area": float(ds["repulsive_area"].max()),
+    }
+
+
+def fmt(row: dict) -> list[str]:
+    out = []
+    for name in ("hardwall", "adhesive"):
+        r = row[name]
+        peak = f"{r['peak_arrays']:.1f}" if r["peak_arrays"] else "-"
+        out.append(
+            f"{row['device']:>5} {row['dtype']:>7} {row['n']:>6}² {name:>9} "
+            f"{r['seconds']:9.3f} s {r['iterations']:>6} it {r['ms_per_iteration']:9.3f} ms/it "
+            f"fft {1e3 * row['fft_seconds']:8.3f} ms  it/fft {r['iteration_over_fft']:5.2f}  "
+            f"peak {peak} arrays  conv={r['converged']}"
+        )
+    return out
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--sizes", type=int, nargs="+", default=[1024, 2048, 4096, 8192])
+    ap.add_argument("--device", default="cuda")
+    ap.add_argument("--dtype", choices=["float64", "float32"], default="float64")
+    ap.add_argument("--cpu-sizes", type=int, nargs="*", default=[1024, 2048])
+    ap.add_argument("--path-size", type=int, default=4096, help="0 skips the path")
+    ap.add_argument("--path-steps", type=int, default=40)
+    ap.add_argument("--cpu-path", action="store_true", help="also run the path on the CPU")
+    ap.add_argument("--load", type=float, default=1e-3, help="hard-wall mean pressure / E*")
+    ap.add_argument("--end-load", type=float, default=5e-4, help="sets the deepest offset")
+    ap.add_argument("--adhesion-length", type=float, default=0.005, help="ℓa / a0")
+    ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--json", metavar="OUT")
+    args = ap.parse_args(argv)
+
+    meta = {"python": sys.version.split()[0], "machine": platform.node(), "cores": n_cores()}
+    meta["roughcontact"] = rc.__version__
+    if args.device != "cpu":
+        cupy = _xp(args.device)
+        props = cupy.cuda.runtime.getDeviceProperties(0)
+        meta |= {"gpu": props["name"].decode(), "cupy": cupy.__version__}
+    print(json.dumps(meta))
+    rows, paths = [], []
+    for n in args.sizes:
+        rows.append(bench_size(n, args, args.device))
+        print("\n".join(fmt(rows[-1])), flush=True)
+    for n in args.cpu_sizes or []:
+        rows.append(bench_size(n, args, "cpu"))
+        print("\n".join(fmt(rows[-1])), flush=True)
+    for a in rows:  # GPU/CPU ratios where both ran
+        for b in rows:
+            if a["n"] == b["n"] and a["device"] != "cpu" and b["device"] == "cpu":
+                for name in ("hardwall", "adhesive"):
+                    ratio = b[name]["seconds"] / a[name]["seconds"]
+                    a[name]["speedup_over_cpu"] = ratio
+                    print(f"{a['n']:>6}² {name:>9}: GPU {ratio:.1f}x faster than the CPU")
+    if args.path_size:
+        devices = [args.device] + (["cpu"] if args.cpu_path and args.device != "cpu" else [])
+        for device in devices:
+            paths.append(bench_path(args.path_size, args, device))
+            p = paths[-1]
+            print(
+                f"path {p['n']}² on {device} ({p['dtype']}): {p['steps']} steps in "
+                f"{p['seconds']:.1f} s, {p['iterations']} iterations, all converged: "
+                f"{p['all_converged']}, pull-off {p['pull_off']:.3e} E*, max A_rep/A0 "
+                f"{p['max_repulsive_area']:.4f}  (target < 120 s on one H100)",
+                flush=True,
+            )
+    if args.json:
+        with open(args.json, "w") as f:
+            json.dump({"meta": meta, "solves": rows, "paths": paths}, f, indent=1)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
