@@ -17,6 +17,7 @@ __all__ = [
     "DTYPES",
     "array_device",
     "array_namespace",
+    "check_device",
     "check_dtype",
     "default_workers",
     "dtype_name",
@@ -105,6 +106,26 @@ def _cupy(device: str):
     return cupy, index
 
 
+def check_device(device: str | None) -> str | None:
+    """Validate a device request before any work: None, "cpu", "cuda" or "cuda:N".
+
+    For CUDA devices this imports CuPy and checks that the GPU exists, so that a study
+    or a path fails at once with a clear error rather than in its first solve.
+    """
+    if device is None or device == "cpu":
+        return device
+    if isinstance(device, str) and (device == "cuda" or device.startswith("cuda:")):
+        if device != "cuda" and not device.partition(":")[2].isdigit():
+            from ._validate import ParameterError
+
+            raise ParameterError(f"device must be 'cpu', 'cuda' or 'cuda:N', got {device!r}")
+        _cupy(device)
+        return device
+    from ._validate import ParameterError
+
+    raise ParameterError(f"device must be 'cpu', 'cuda' or 'cuda:N', got {device!r}")
+
+
 def to_device(x, device: str | None = None, dtype=None):
     """``x`` as an array on ``device`` in floating precision ``dtype``.
 
@@ -123,20 +144,13 @@ def to_device(x, device: str | None = None, dtype=None):
         Copied only when the device or the precision changes.
     """
     dtype = check_dtype(dtype)
-    if device is not None and not isinstance(device, str):
-        from ._validate import ParameterError
-
-        raise ParameterError(f"device must be 'cpu', 'cuda' or 'cuda:N', got {device!r}")
+    check_device(device)
     if device == "cpu" or (device is None and not hasattr(x, "__array_namespace__")):
         x = to_numpy(x) if hasattr(x, "__array_namespace__") else np.asarray(x)
-    elif device is not None and (device == "cuda" or device.startswith("cuda:")):
+    elif device is not None:
         cupy, index = _cupy(device)
         with cupy.cuda.Device(index):
             x = cupy.asarray(x)
-    elif device is not None:
-        from ._validate import ParameterError
-
-        raise ParameterError(f"device must be 'cpu', 'cuda' or 'cuda:N', got {device!r}")
     xp = array_namespace(x)
     if dtype is None:
         dtype = x.dtype if xp.isdtype(x.dtype, "real floating") else "float64"

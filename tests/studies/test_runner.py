@@ -180,3 +180,16 @@ def test_resume_of_a_finished_study_starts_no_cluster(tmp_path, monkeypatch, mak
     monkeypatch.setattr(cluster, "connect", lambda *a: pytest.fail("connected"))
     s = run_study(study, tmp_path / "out", resume=True, progress=False)
     assert (s.skipped, s.completed) == (8, 0) and os.path.exists(tmp_path / "out" / "study.json")
+
+
+def test_device_is_checked_before_work_and_float32_is_recorded(tmp_path, make_study):
+    study = make_study(extra='dtype = "float32"')
+    with pytest.raises(ParameterError, match="device must be 'cpu', 'cuda' or 'cuda:N'"):
+        run_study(study, tmp_path / "bad", scheduler="synchronous", device="gpu")
+    assert not (tmp_path / "bad").exists()
+    out = tmp_path / "out"
+    summary = run_study(study, out, scheduler="synchronous", progress=False, device="cpu")
+    assert summary.ok
+    with xr.open_dataset(sorted(out.glob("task-*.nc"))[0], engine="h5netcdf") as ds:
+        assert ds.attrs["solver_dtype"] == "float32" and ds.attrs["dtype"] == "float32"
+        assert ds.attrs["device"] == "cpu"

@@ -58,6 +58,8 @@ def with_(section, **values):
         ({**base(), "cases": [{"hurst": [0.3]}]}, ["[[cases]] #1", "hurst", "wrong type"]),
         (with_("output", fields_at_area=[0.02, 1.0]), ["fields_at_area", "1.0", "(0, 1)"]),
         (with_("output", fields_at_area=0.02), ["fields_at_area", "0.02", "expected a list"]),
+        (with_("solver", dtype="float16"), ["dtype", "'float16'", "'float64' or 'float32'"]),
+        (with_("solver", dtype="float32"), ["[solver] tol", "1e-08", "float32", ">= 1e-06"]),
     ],
 )
 def test_bad_study_names_key_value_and_range(data, words):
@@ -179,3 +181,10 @@ def test_importing_roughcontact_loads_neither_dask_nor_xarray():
         "assert not bad, bad"
     )
     subprocess.run([sys.executable, "-c", code], check=True)
+
+
+def test_dtype_enters_the_task_keys_only_when_not_the_default():
+    plain = study_from_dict(base()).tasks[0].key
+    assert study_from_dict(with_("solver", dtype="float64")).tasks[0].key == plain
+    single = study_from_dict(with_("solver", dtype="float32", tol=1e-6)).tasks[0]
+    assert single.key != plain and single.settings["solver"]["dtype"] == "float32"

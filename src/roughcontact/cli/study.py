@@ -38,7 +38,12 @@ def study():
     help="Worker processes of the local cluster (default: the CPU cores).",
 )
 @click.option("--no-progress", is_flag=True, help="No progress bar.")
-def run(study_file, out_dir, resume, scheduler, workers, no_progress):
+@click.option(
+    "--device",
+    default=None,
+    help="Where the workers compute: cpu (default), cuda or cuda:N (CuPy on a GPU).",
+)
+def run(study_file, out_dir, resume, scheduler, workers, no_progress, device):
     """Run every task of STUDY.toml; store each result in the -o directory as it finishes.
 
     Exit code 0 when all tasks finished (steps that did not converge are reported in
@@ -56,6 +61,7 @@ def run(study_file, out_dir, resume, scheduler, workers, no_progress):
         scheduler=scheduler,
         workers=workers,
         progress=not no_progress,
+        device=device,
     )
     click.echo(str(summary))
     if not summary.ok:

@@ -7,10 +7,12 @@ only where the driver runs.
 
 from __future__ import annotations
 
+import dataclasses
 import time
 from dataclasses import dataclass
 from pathlib import Path
 
+from .._backend import check_device
 from .._validate import ParameterError
 from . import cluster, lock, store
 from .spec import StudySpec, load_study
@@ -100,7 +102,9 @@ def _drive(spec, out, todo, client, done, progress):
     return unconverged, failed
 
 
-def run_study(study, out_dir, *, resume=False, scheduler=None, workers=None, progress=True):
+def run_study(
+    study, out_dir, *, resume=False, scheduler=None, workers=None, progress=True, device=None
+):
     """Run every task of a study and store each result as it finishes.
 
     Parameters
@@ -123,6 +127,10 @@ def run_study(study, out_dir, *, resume=False, scheduler=None, workers=None, pro
         Worker processes of the local cluster (default: the usable CPU cores).
     progress : bool
         Show a progress bar over tasks (stderr).
+    device : {None, "cpu", "cuda", "cuda:N"}
+        Where the workers compute (see :func:`roughcontact.to_device`); checked before
+        any work. Not part of the task keys: a study resumed on another device skips
+        the tasks already done.
 
     Returns
     -------
@@ -135,6 +143,9 @@ def run_study(study, out_dir, *, resume=False, scheduler=None, workers=None, pro
     """
     t0 = time.perf_counter()
     spec = study if isinstance(study, StudySpec) else load_study(study)
+    if check_device(device) is not None:
+        tasks = tuple(dataclasses.replace(t, device=device) for t in spec.tasks)
+        spec = dataclasses.replace(spec, tasks=tasks)
     if workers is not None and (
         isinstance(workers, bool) or not isinstance(workers, int) or workers < 1
     ):

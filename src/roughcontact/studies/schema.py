@@ -105,6 +105,9 @@ SCHEMA = {
     "solver": {
         "tol": _k(float, "in (0, 1)", lambda v: 0 < v < 1, 1e-8, False),
         "max_iter": _k(int, "an integer >= 1", lambda v: v >= 1, 5000, False),
+        "dtype": _k(
+            str, "'float64' or 'float32'", lambda v: v in ("float64", "float32"), "float64", False
+        ),
     },
     "analysis": {
         "target_area": _k(float, "in (0, 1)", lambda v: 0 < v < 1, 0.01, False),

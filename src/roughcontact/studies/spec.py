@@ -17,6 +17,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from .._validate import ParameterError
+from ..solvers._ops import DEFAULT_TOL
 from .schema import KINDS, LAW_KEYS, SCHEMA, SWEEP_KEYS, UNITS, find, make_interaction
 
 __all__ = ["StudySpec", "Task", "load_study", "make_interaction", "study_from_dict"]
@@ -35,6 +36,7 @@ class Task:
     params: dict
     settings: dict = field(repr=False)
     key: str = ""
+    device: str | None = None  # where to compute; not part of the key (same results)
 
 
 @dataclass(frozen=True)
@@ -212,6 +214,14 @@ def _settings(sections) -> dict:
     areas = list(out["output"].pop("fields_at_area"))
     if areas:
         out["output"]["fields_at_area"] = areas
+    solver = out["solver"]
+    if solver["dtype"] == "float32" and solver["tol"] < DEFAULT_TOL["float32"]:
+        _fail(
+            f"[solver] tol = {solver['tol']!r} is out of range for dtype = 'float32': "
+            f"accepted >= {DEFAULT_TOL['float32']:g} (its rounding floor)"
+        )
+    if solver["dtype"] == "float64":
+        del solver["dtype"]  # the default: keys as before the key existed (see above)
     return out
 
 

@@ -167,6 +167,8 @@ def compute_task(task: Task):
         max_iter=s["solver"]["max_iter"],
         fields_at=s["output"]["fields_at"],
         progress=nearest,
+        device=task.device,
+        dtype=s["solver"].get("dtype", "float64"),
         **{f"{s['path']['control']}s": values},
     )
     ds = with_fields(ds, nearest.fields())
@@ -187,6 +189,7 @@ def compute_task(task: Task):
             "seed": int(p["seed"]),
             "solver_tol": float(s["solver"]["tol"]),
             "solver_max_iter": int(s["solver"]["max_iter"]),
+            "solver_dtype": s["solver"].get("dtype", "float64"),
             "steps_not_converged": int((~converged).sum()),
             "analysis": json.dumps(analysis, sort_keys=True),
             "analysis_error": error,
