@@ -16,7 +16,14 @@ from .analysis import (
 )
 from .elastic import Substrate
 from .interactions import Exponential, HardWall, LennardJones93, MaugisDugdale, SmoothLJ93
-from .solvers import ContactResult, PathError, approach_retract, polonsky_keer, solve
+from .solvers import (
+    ContactResult,
+    PathError,
+    PathInterrupted,
+    approach_retract,
+    polonsky_keer,
+    solve,
+)
 from .surfaces import (
     egg_box,
     flat,
@@ -39,6 +46,7 @@ __all__ = [
     "MaugisDugdale",
     "ParameterError",
     "PathError",
+    "PathInterrupted",
     "SmoothLJ93",
     "Substrate",
     "approach_retract",

@@ -356,6 +356,13 @@ def contact(
     help="NetCDF file for the path.",
 )
 @click.option("--fields-at", type=int, multiple=True, help="Steps whose fields are stored.")
+@click.option(
+    "--checkpoint-seconds",
+    type=click.FloatRange(min=0),
+    default=60.0,
+    show_default=True,
+    help="Rewrite -o with the steps done so far at most this often (s; 0: every step).",
+)
 @click.option("--json", "as_json", is_flag=True, help="Print a JSON summary.")
 def path(
     surface_file,
@@ -378,15 +385,19 @@ def path(
     core_stiffness,
     output,
     fields_at,
+    checkpoint_seconds,
     as_json,
 ):
     """Follow a quasi-static approach (and retraction) path; write it to a NetCDF file.
 
-    Exit code 3 if any state did not converge, 2 on bad input.
+    The file is rewritten atomically with the steps done so far every
+    --checkpoint-seconds, so a crash or kill loses at most that much work; Ctrl-C writes
+    the finished steps and exits with code 130. Exit code 3 if any state did not
+    converge, 2 on bad input, 1 if a step failed (the steps before it are in the file).
     """
     import numpy as np
 
-    from ..solvers import PathError, approach_retract
+    from ..solvers import PathError, PathInterrupted, approach_retract
     from ..surfaces import load_heights
 
     if (offsets is None) == (loads is None):
@@ -431,15 +442,17 @@ def path(
             progress=show,
             device=device,
             dtype=dtype,
+            checkpoint=lambda partial: _write_path(partial, output, surface_file),
+            checkpoint_seconds=checkpoint_seconds,
             **kwargs,
         )
-    except PathError as err:
+    except (PathError, PathInterrupted) as err:
         bar.close()
-        err.partial.to_netcdf(output, engine="h5netcdf")
-        _fail(f"{err} (the {err.partial.sizes['step']} steps before it are in {output})", 1)
+        _write_path(err.partial, output, surface_file)
+        done = f"the {err.partial.sizes['step']} steps before it are in {output}"
+        _fail(f"{err} ({done})", 130 if isinstance(err, PathInterrupted) else 1)
     bar.close()
-    ds.attrs["surface_file"] = str(surface_file)
-    ds.to_netcdf(output, engine="h5netcdf")
+    _write_path(ds, output, surface_file)
     summary = {
         "pull_off": float(ds.attrs["pull_off"]) if retract else None,
         "steps": int(ds.sizes["step"]),
@@ -453,6 +466,19 @@ def path(
     )
     if not summary["all_converged"]:
         _fail("some states did not converge (see the 'converged' variable)", EXIT_NOT_CONVERGED)
+
+
+def _write_path(ds, output, surface_file):
+    """Write a path dataset atomically: a reader never sees a half-written file."""
+    import os
+
+    ds.attrs["surface_file"] = str(surface_file)
+    tmp = Path(output).with_name(f".{Path(output).name}.{os.getpid()}.tmp")
+    try:
+        ds.to_netcdf(tmp, engine="h5netcdf")
+        os.replace(tmp, output)
+    finally:
+        tmp.unlink(missing_ok=True)
 
 
 @main.command()

@@ -1,6 +1,6 @@
 """Contact solvers and the result record."""
 
-from .path import PathError, approach_retract
+from .path import PathError, PathInterrupted, approach_retract
 from .polonsky_keer import polonsky_keer
 from .result import ContactResult
 from .smooth import minimize_energy
@@ -9,6 +9,7 @@ from .solve import solve
 __all__ = [
     "ContactResult",
     "PathError",
+    "PathInterrupted",
     "approach_retract",
     "minimize_energy",
     "polonsky_keer",

@@ -12,7 +12,7 @@ from .._validate import ParameterError
 from ..analysis.contact_geometry import contact_patches
 from .solve import solve
 
-__all__ = ["PathError", "approach_retract"]
+__all__ = ["PathError", "PathInterrupted", "approach_retract"]
 
 _SCALARS = (
     "offset",
@@ -40,6 +40,17 @@ class PathError(RuntimeError):
         self.partial = partial
 
 
+class PathInterrupted(KeyboardInterrupt):
+    """Ctrl-C during a path; ``partial`` holds the dataset of the steps finished before it.
+
+    A :class:`KeyboardInterrupt`, so code that does not look for it still stops as usual.
+    """
+
+    def __init__(self, message, partial):
+        super().__init__(message)
+        self.partial = partial
+
+
 def approach_retract(
     heights,
     substrate,
@@ -55,6 +66,8 @@ def approach_retract(
     progress=None,
     device=None,
     dtype=None,
+    checkpoint=None,
+    checkpoint_seconds=60.0,
 ):
     """Follow a quasi-static path and return it as an ``xarray.Dataset``.
 
@@ -84,6 +97,10 @@ def approach_retract(
     device, dtype
         Where and in which precision to compute, as for :func:`roughcontact.solve`; the
         heights are moved once, before the first step. Recorded in the attrs.
+    checkpoint : callable, optional
+        ``checkpoint(dataset)`` with the steps done so far, after a step when at least
+        ``checkpoint_seconds`` (s) have passed since the last call (0: after every step):
+        for writing partial results that survive a crash or a kill.
 
     Returns
     -------
@@ -100,6 +117,8 @@ def approach_retract(
     ------
     PathError
         When a step ends in a non-finite state; its ``partial`` has every step before.
+    PathInterrupted
+        On Ctrl-C (KeyboardInterrupt) during a step; its ``partial`` has every step before.
     """
     if (offsets is None) == (loads is None):
         raise ParameterError("give exactly one of offsets or loads")
@@ -121,12 +140,19 @@ def approach_retract(
     dtype = dtype_name(heights)
     attrs |= {"dtype": dtype, "device": str(array_device(heights))}
     rows, fields, previous, t0 = [], {}, None, time.perf_counter()
+    saved = t0
     for step, value in enumerate(values):
         kwargs = {control: float(value)}
-        res = solve(
-            heights, substrate, interaction, initial=previous, tol=tol, max_iter=max_iter,
-            dtype=dtype, **kwargs,
-        )  # fmt: skip
+        try:
+            res = solve(
+                heights, substrate, interaction, initial=previous, tol=tol,
+                max_iter=max_iter, dtype=dtype, **kwargs,
+            )  # fmt: skip
+        except KeyboardInterrupt:
+            raise PathInterrupted(
+                f"interrupted in step {step} ({control} = {value:g})",
+                _dataset(rows, branch, fields, control, t0, attrs),
+            ) from None
         if "non-finite" in res.message or not math.isfinite(res.load):
             raise PathError(
                 f"step {step} ({control} = {value:g}): {res.message}",
@@ -146,6 +172,9 @@ def approach_retract(
         previous = res
         if progress is not None:
             progress(step + 1, values.size, res)
+        if checkpoint is not None and time.perf_counter() - saved >= checkpoint_seconds:
+            checkpoint(_dataset(rows, branch, fields, control, t0, attrs))
+            saved = time.perf_counter()
     return _dataset(rows, branch, fields, control, t0, attrs)
 
 
