@@ -13,6 +13,8 @@ import numpy as np
 from array_api_compat import array_namespace, is_numpy_array
 from array_api_compat import device as array_device
 
+from ._validate import ParameterError
+
 __all__ = [
     "DTYPES",
     "array_device",
@@ -75,8 +77,6 @@ def check_dtype(dtype) -> str | None:
         return None
     name = getattr(dtype, "__name__", None) or str(getattr(dtype, "name", dtype))
     if name not in DTYPES:
-        from ._validate import ParameterError
-
         raise ParameterError(f"dtype must be one of {', '.join(DTYPES)}, got {dtype!r}")
     return name
 
@@ -87,8 +87,7 @@ def dtype_name(x) -> str:
 
 
 def _cupy(device: str):
-    from ._validate import ParameterError
-
+    """(cupy, GPU index) for ``"cuda"`` / ``"cuda:N"``, or a ParameterError saying why not."""
     try:
         import cupy
     except ImportError:
@@ -114,16 +113,13 @@ def check_device(device: str | None) -> str | None:
     """
     if device is None or device == "cpu":
         return device
-    if isinstance(device, str) and (device == "cuda" or device.startswith("cuda:")):
-        if device != "cuda" and not device.partition(":")[2].isdigit():
-            from ._validate import ParameterError
-
-            raise ParameterError(f"device must be 'cpu', 'cuda' or 'cuda:N', got {device!r}")
-        _cupy(device)
-        return device
-    from ._validate import ParameterError
-
-    raise ParameterError(f"device must be 'cpu', 'cuda' or 'cuda:N', got {device!r}")
+    cuda = isinstance(device, str) and (
+        device == "cuda" or (device.startswith("cuda:") and device[5:].isdigit())
+    )
+    if not cuda:
+        raise ParameterError(f"device must be 'cpu', 'cuda' or 'cuda:N', got {device!r}")
+    _cupy(device)
+    return device
 
 
 def to_device(x, device: str | None = None, dtype=None):

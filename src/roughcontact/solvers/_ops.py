@@ -16,8 +16,8 @@ __all__ = [
     "check_problem",
     "compliance_operator",
     "dot",
-    "total",
     "stiffness_operator",
+    "total",
 ]
 
 
