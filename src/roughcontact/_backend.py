@@ -7,6 +7,8 @@ is faster than ``numpy.fft`` and accepts ``workers=`` for multithreading.
 
 from __future__ import annotations
 
+import contextlib
+import functools
 import os
 
 import numpy as np
@@ -21,6 +23,7 @@ __all__ = [
     "array_namespace",
     "check_device",
     "check_dtype",
+    "computes_on_heights_device",
     "default_workers",
     "dtype_name",
     "irfft2",
@@ -68,7 +71,13 @@ def to_numpy(x) -> np.ndarray:
         return x
     if hasattr(x, "get"):  # CuPy
         return x.get()
-    return np.asarray(x)
+    try:
+        return np.asarray(x)
+    except RuntimeError:
+        # an array-API library refusing an implicit copy off its device: move it to the
+        # library's default (host) device first
+        host = array_namespace(x).__array_namespace_info__().default_device()
+        return np.asarray(x.to_device(host))
 
 
 def check_dtype(dtype) -> str | None:
@@ -152,3 +161,28 @@ def to_device(x, device: str | None = None, dtype=None):
         dtype = x.dtype if xp.isdtype(x.dtype, "real floating") else "float64"
     want = getattr(xp, dtype) if isinstance(dtype, str) else dtype
     return x if x.dtype == want else xp.astype(x, want)
+
+
+def _device_context(heights, device):
+    """The context that makes the computing GPU current (CuPy launches on the current one)."""
+    if isinstance(device, str) and device.startswith("cuda"):
+        cupy, index = _cupy(device)
+        return cupy.cuda.Device(index)
+    if device is None and type(heights).__module__.split(".")[0] == "cupy":
+        return heights.device
+    return contextlib.nullcontext()
+
+
+def computes_on_heights_device(solver):
+    """Run ``solver(heights, ..., device=...)`` with the heights' GPU as the current device.
+
+    Without it a solve on ``"cuda:1"`` would launch its kernels on GPU 0. A no-op for
+    NumPy and every other backend.
+    """
+
+    @functools.wraps(solver)
+    def wrapper(heights, *args, device=None, **kwargs):
+        with _device_context(heights, device):
+            return solver(heights, *args, device=device, **kwargs)
+
+    return wrapper

@@ -128,3 +128,42 @@ def test_hard_wall_path():
     got = rc.approach_retract(strict(h), sub, loads=loads, retract=False)
     np.testing.assert_allclose(got["offset"], ref["offset"], rtol=1e-9)
     np.testing.assert_array_equal(got["repulsive_area"], ref["repulsive_area"])
+
+
+DEVICE_CASES = [
+    (rc.HardWall(), "load", 2e-3),
+    (rc.HardWall(), "offset", -0.1),
+    (rc.SmoothLJ93.from_adhesion_length(0.005), "offset", 0.8),
+    (rc.Exponential(work_of_adhesion=0.005, range=0.5), "offset", -0.1),
+    (rc.Exponential(work_of_adhesion=0.005, range=0.5), "load", 1e-3),
+]
+
+
+@pytest.mark.parametrize(("law", "control", "value"), DEVICE_CASES)
+def test_everything_stays_on_the_heights_device(law, control, value):
+    # array_api_strict refuses to mix arrays of two devices, as a GPU would (cuda:1
+    # against cuda:0); every array the core creates must follow the heights
+    if not hasattr(xp, "Device"):
+        pytest.skip("array_api_strict without multiple devices")
+    other = xp.Device("device1")
+    h = rc.self_affine((32, 32), hurst=0.8, rms_slope=0.1, short_cutoff=4, seed=3)
+    sub = rc.Substrate((32, 32), thickness=7.0, poisson=0.3)
+    value = value + float(h.max()) if control == "offset" else value
+    ref = rc.solve(h, sub, law, **{control: value})
+    got = rc.solve(xp.asarray(h, device=other), sub, law, **{control: value})
+    assert got.converged and got.iterations == ref.iterations
+    np.testing.assert_allclose(got.pressure, ref.pressure, rtol=1e-9, atol=1e-12)
+    warm = rc.solve(xp.asarray(h, device=other), sub, law, initial=ref, **{control: value})
+    assert warm.converged
+
+
+def test_paths_and_statistics_on_another_device():
+    if not hasattr(xp, "Device"):
+        pytest.skip("array_api_strict without multiple devices")
+    h = rc.self_affine((32, 32), hurst=0.8, rms_slope=0.1, short_cutoff=4, seed=3)
+    hd = xp.asarray(h, device=xp.Device("device1"))
+    assert rc.statistics(hd).to_dict() == pytest.approx(rc.statistics(h).to_dict())
+    law = rc.SmoothLJ93.from_adhesion_length(0.005)
+    offsets = float(h.max()) + np.array([1.2, 1.0, 0.8])
+    ds = rc.approach_retract(hd, rc.Substrate((32, 32)), law, offsets=offsets)
+    assert ds.attrs["device"] == str(xp.Device("device1")) and bool(ds.attrs["all_converged"])

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 
-from .._backend import array_namespace, dtype_name
+from .._backend import array_device, array_namespace, dtype_name
 from ._ops import StallGuard, dot, total
 
 
@@ -25,7 +25,7 @@ def iterate_dense(p, pb):
     """
     xp = array_namespace(p)
     hf, conv, target, offset = pb.hf, pb.conv, pb.target, pb.offset
-    zero = xp.zeros((), dtype=hf.dtype)
+    zero = xp.zeros((), dtype=hf.dtype, device=array_device(hf))
     s = conv(p) - hf  # s = u - h, so that the gap is s + d
     c = p > 0
     t = None

@@ -35,7 +35,13 @@ from __future__ import annotations
 import math
 import time
 
-from .._backend import array_namespace, dtype_name, to_numpy
+from .._backend import (
+    array_device,
+    array_namespace,
+    computes_on_heights_device,
+    dtype_name,
+    to_numpy,
+)
 from .._validate import ParameterError
 from ._ops import (
     StallGuard,
@@ -78,6 +84,7 @@ def project_feasible(v, lower, zero_mean: bool):
     return u
 
 
+@computes_on_heights_device
 def minimize_energy_bounded(
     heights,
     substrate,
@@ -139,12 +146,13 @@ def minimize_energy_bounded(
 
     if initial is not None:
         w0 = getattr(initial, "deflection", initial)
-        w0 = xp.asarray(w0 if xp is array_namespace(w0) else to_numpy(w0), copy=True)
+        w0 = w0 if xp is array_namespace(w0) else to_numpy(w0)
+        w0 = xp.asarray(w0, device=array_device(h), copy=True)
         w0 = xp.reshape(xp.astype(w0, h.dtype), (-1,))
         if w0.size != n:
             raise ParameterError(f"initial must have the substrate's shape {substrate.shape}")
     else:
-        w0 = xp.zeros(n, dtype=h.dtype)
+        w0 = xp.zeros(n, dtype=h.dtype, device=array_device(h))
     w = project_feasible(w0 - xp.mean(w0) if rigid else w0, lower, rigid)
     kw = stiff(w)
 
@@ -156,7 +164,7 @@ def minimize_energy_bounded(
     gz_old, active_old = 1.0, None
     converged, message, residual, it, mu = False, "iteration cap reached", math.inf, 0, 0.0
     stall = StallGuard(dtype_name(h))
-    free = xp.ones(n, dtype=xp.bool)
+    free = xp.ones(n, dtype=xp.bool, device=array_device(h))
     while True:
         gap = base + w
         p_int = interaction.pressure(gap)

@@ -7,7 +7,7 @@ import time
 
 import numpy as np
 
-from .._backend import array_device, dtype_name, to_device
+from .._backend import array_device, computes_on_heights_device, dtype_name, to_device
 from .._validate import ParameterError
 from ..analysis.contact_geometry import contact_patches
 from .solve import solve
@@ -51,6 +51,7 @@ class PathInterrupted(KeyboardInterrupt):
         self.partial = partial
 
 
+@computes_on_heights_device
 def approach_retract(
     heights,
     substrate,

@@ -34,7 +34,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._backend import array_device, array_namespace, dtype_name, is_numpy_array, to_numpy
+from .._backend import (
+    array_device,
+    array_namespace,
+    computes_on_heights_device,
+    dtype_name,
+    is_numpy_array,
+    to_numpy,
+)
 from .._validate import ParameterError
 from ._ops import StallGuard, check_hard_wall_offset, check_problem, compliance_operator
 from ._ops import dot as _dot
@@ -88,7 +95,7 @@ def _initial_pressure(initial, heights, substrate, load, offset):
         p0 = xp.maximum(xp.reshape(p0, (-1,)), 0.0)
         total = float(xp.sum(p0))
         if load is not None:
-            return p0 * (load * n / total) if total > 0 else xp.full(n, load, dtype=p0.dtype)
+            return p0 * (load * n / total) if total > 0 else xp.full_like(p0, load)
         if total > 0:
             return p0
     if load is not None:
@@ -98,6 +105,7 @@ def _initial_pressure(initial, heights, substrate, load, offset):
     return xp.maximum(xp.reshape(heights, (-1,)) - offset, 0.0) * scale
 
 
+@computes_on_heights_device
 def polonsky_keer(
     heights,
     substrate,

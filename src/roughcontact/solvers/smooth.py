@@ -33,7 +33,15 @@ from __future__ import annotations
 import math
 import time
 
-from .._backend import array_namespace, dtype_name, irfft2, rfft2, to_numpy
+from .._backend import (
+    array_device,
+    array_namespace,
+    computes_on_heights_device,
+    dtype_name,
+    irfft2,
+    rfft2,
+    to_numpy,
+)
 from .._validate import ParameterError
 from ._ops import StallGuard, check_problem, stiffness_operator
 from ._ops import dot as _dot
@@ -53,6 +61,7 @@ def _local_pressure(interaction, gap):
     return p
 
 
+@computes_on_heights_device
 def minimize_energy(
     heights,
     substrate,
@@ -113,13 +122,14 @@ def minimize_energy(
     base = offset - xp.reshape(h, (-1,))  # gap = base + w
     if initial is not None:
         w = getattr(initial, "deflection", initial)
-        w = xp.reshape(xp.asarray(w if xp is array_namespace(w) else to_numpy(w), copy=True), (-1,))
+        w = w if xp is array_namespace(w) else to_numpy(w)
+        w = xp.reshape(xp.asarray(w, device=array_device(h), copy=True), (-1,))
         if w.shape[0] != n:
             raise ParameterError(f"initial must have the substrate's shape {substrate.shape}")
         if rigid:
             w -= xp.mean(w)
     else:
-        w = xp.zeros(n, dtype=h.dtype)
+        w = xp.zeros(n, dtype=h.dtype, device=array_device(h))
     kw = elastic_pressure(w)
 
     def gradient(gap):

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 
+from .._backend import computes_on_heights_device
 from .._validate import ParameterError
 from ..interactions.hardwall import HardWall
 from .bounded import minimize_energy_bounded
@@ -14,6 +15,7 @@ from .smooth import minimize_energy
 __all__ = ["solve"]
 
 
+@computes_on_heights_device
 def solve(
     heights,
     substrate,
