@@ -69,12 +69,16 @@ def project_feasible(v, lower, zero_mean: bool):
     if not zero_mean:
         return xp.maximum(v, lower)
     lam = -float(xp.mean(v))
-    scale = float(xp.sum(xp.abs(lower))) + float(xp.sum(xp.abs(v))) + 1e-300
+    scale = total(xp.abs(lower)) + total(xp.abs(v)) + 1e-300
+    best, u_best = math.inf, None
     for _ in range(200):
         u = xp.maximum(v + lam, lower)
-        f = float(xp.sum(u))
+        f = total(u)
+        if abs(f) >= best:  # no better at the precision of v (float32 stops here)
+            return u_best
         if abs(f) <= 1e-13 * scale:
             break
+        best, u_best = abs(f), u
         free = v + lam > lower
         count = int(xp.count_nonzero(free))
         if count == 0:  # everything clipped: move to the first breakpoint
