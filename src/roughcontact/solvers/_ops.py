@@ -11,6 +11,7 @@ from .._validate import ParameterError, heights2d
 
 __all__ = [
     "DEFAULT_TOL",
+    "POINT_CORRECTIONS",
     "StallGuard",
     "check_hard_wall_offset",
     "check_problem",
@@ -62,6 +63,10 @@ def total(x) -> float:
     xp = array_namespace(x)
     return float(xp.sum(x, dtype=xp.float64))
 
+
+#: Up to this many sites changed by a projection, the hard-wall solver adds their point
+#: responses (each a pass over the grid) instead of convolving the whole pressure again.
+POINT_CORRECTIONS = 8
 
 #: Default tolerance of every solver's residual, and the smallest float32 can reach
 #: (measured: the residuals of all three solvers stall at 3e-7 to 6e-7 in single

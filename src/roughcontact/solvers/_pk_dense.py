@@ -3,19 +3,42 @@
 The same steps as the index-array loop in :mod:`.polonsky_keer` (see there for the
 method and the residual), written with ``where``-masks because the array API has no
 integer-array assignment. Every pass is over the whole grid, which a GPU does at memory
-bandwidth; per iteration only scalars (step length, norms, flags) go to the host.
+bandwidth; per iteration only scalars (step length, norms, flags, and the few sites of a
+point correction) go to the host. Tested to take exactly the steps of the NumPy loop.
 """
 
 from __future__ import annotations
 
 import math
 
-from .._backend import array_device, array_namespace, dtype_name
-from ._ops import StallGuard, dot, total
+from .._backend import array_device, array_namespace, dtype_name, to_numpy
+from ._ops import POINT_CORRECTIONS, StallGuard, dot, total
 
 
 def _count(xp, mask) -> int:
     return int(xp.sum(xp.astype(mask, xp.int64)))
+
+
+class _RollKernel:
+    """Response of the substrate to unit point forces, as rolled copies of one response."""
+
+    def __init__(self, conv, hf, shape):
+        xp = array_namespace(hf)
+        n = hf.shape[0]
+        unit = xp.astype(xp.arange(n, device=array_device(hf)) == 0, hf.dtype)
+        self.g0 = xp.reshape(conv(unit), shape)
+        self.shape = shape
+
+    def add(self, s, changed, coeffs):
+        """``s + sum_j coeffs[j] G(x - x_j)`` over the sites where ``changed`` (periodic)."""
+        xp = array_namespace(s)
+        sites = xp.nonzero(changed)[0]
+        values = to_numpy(xp.take(coeffs, sites)).tolist()  # a few scalars to the host
+        s2 = xp.reshape(s, self.shape)
+        for site, value in zip(to_numpy(sites).tolist(), values, strict=True):
+            shift = divmod(site, self.shape[1])
+            s2 = s2 + value * xp.roll(self.g0, shift, axis=(0, 1))
+        return xp.reshape(s2, (-1,))
 
 
 def iterate_dense(p, pb):
@@ -28,7 +51,7 @@ def iterate_dense(p, pb):
     zero = xp.zeros((), dtype=hf.dtype, device=array_device(hf))
     s = conv(p) - hf  # s = u - h, so that the gap is s + d
     c = p > 0
-    t = None
+    t = kernel = None
     delta, g_old, exact = False, 1.0, True
     converged, message, residual, it = False, "iteration cap reached", math.inf, 0
     stall = StallGuard(dtype_name(hf))
@@ -86,13 +109,26 @@ def iterate_dense(p, pb):
             delta = not bool(xp.any(ol))
             c = p > 0
             t = xp.where(c, t, zero)
+            changed = clipped | out  # where p differs from p_new = p - tau t
+            few = _count(xp, changed) <= POINT_CORRECTIONS
+            correction = p - p_new if few else None
+            lam = 1.0
             if target is not None:
                 p_sum = total(p)
                 if not p_sum > 0:  # everything was clipped: restart from uniform pressure
-                    p, delta = xp.full_like(p, target / p.shape[0]), False
+                    p, delta, few = xp.full_like(p, target / p.shape[0]), False, False
                 else:
-                    p = p * (target / p_sum)
-            s, exact = conv(p) - hf, True
+                    lam = target / p_sum
+                    p = p * lam
+            if few:
+                # few sites changed: add their point responses instead of a convolution
+                kernel = kernel or _RollKernel(conv, hf, pb.shape)
+                s = kernel.add(s - tau * r, changed, correction)
+                if lam != 1.0:  # s = lam (u + G c) - h
+                    s = lam * s + (lam - 1.0) * hf
+                exact = False
+            else:
+                s, exact = conv(p) - hf, True
         c = p > 0
         if pb.callback is not None and pb.callback(it, residual):
             message = "stopped by callback"

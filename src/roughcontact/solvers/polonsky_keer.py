@@ -43,14 +43,18 @@ from .._backend import (
     to_numpy,
 )
 from .._validate import ParameterError
-from ._ops import StallGuard, check_hard_wall_offset, check_problem, compliance_operator
+from ._ops import (
+    POINT_CORRECTIONS,
+    StallGuard,
+    check_hard_wall_offset,
+    check_problem,
+    compliance_operator,
+)
 from ._ops import dot as _dot
 from ._pk_dense import iterate_dense
 from .observables import make_result
 
 __all__ = ["polonsky_keer"]
-# up to this many changed sites, point responses are cheaper than a convolution
-_POINT_CORRECTIONS = 8
 
 
 def _subtract_heights(u, hf):
@@ -179,6 +183,7 @@ def polonsky_keer(
     p = _initial_pressure(initial, h, substrate, load, offset)
     problem = _Problem(
         hf=hf,
+        shape=tuple(h.shape),
         conv=conv,
         target=None if load is None else load * hf.shape[0],
         offset=offset,
@@ -206,6 +211,7 @@ class _Problem:
     """What both iteration loops need: heights, operator, control and stopping rules."""
 
     hf: object  # flat heights
+    shape: tuple  # the grid
     conv: object  # p -> G p
     target: float | None  # total pressure (load control) or None
     offset: float | None  # displacement control
@@ -304,7 +310,7 @@ def _iterate_sparse(p, pb, substrate):
                 else:
                     lam = target / total
                     p[idx] *= lam
-            if changed.size <= _POINT_CORRECTIONS:
+            if changed.size <= POINT_CORRECTIONS:
                 # few sites changed: add their point responses instead of a convolution
                 r *= tau
                 s -= r
