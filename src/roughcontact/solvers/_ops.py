@@ -17,6 +17,8 @@ __all__ = [
     "check_problem",
     "compliance_operator",
     "dot",
+    "false_position",
+    "illinois",
     "stiffness_operator",
     "total",
 ]
@@ -62,6 +64,24 @@ def total(x) -> float:
     """Sum of an array of any backend as a Python float, accumulated in float64."""
     xp = array_namespace(x)
     return float(xp.sum(x, dtype=xp.float64))
+
+
+def false_position(a, f_a, b, f_b) -> float:
+    """The regula falsi point of the bracket ``[a, b]`` (its midpoint if that falls outside)."""
+    x = (a * f_b - b * f_a) / (f_b - f_a)
+    return x if min(a, b) < x < max(a, b) else 0.5 * (a + b)
+
+
+def illinois(a, f_a, b, f_b, x, f, side):
+    """Bracket update of the Illinois method: ``(a, f_a, b, f_b, side)`` after ``f(x)``.
+
+    ``x`` replaces the end whose value has the sign of ``f``; when the same end is
+    replaced twice in a row, the other end's value is halved, which keeps regula falsi
+    from stalling (Dowell & Jarratt, BIT 11, 168 (1971)).
+    """
+    if (f > 0) == (f_a > 0):
+        return x, f, b, (0.5 * f_b if side == -1 else f_b), -1
+    return a, (0.5 * f_a if side == 1 else f_a), x, f, 1
 
 
 #: Up to this many sites changed by a projection, the hard-wall solver adds their point

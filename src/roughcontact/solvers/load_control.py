@@ -23,7 +23,7 @@ import math
 import time
 
 from .._backend import array_namespace, dtype_name
-from ._ops import check_problem
+from ._ops import check_problem, false_position, illinois
 
 __all__ = ["solve_at_load"]
 
@@ -116,23 +116,12 @@ def solve_at_load(
         return finish(res_b, False, f"load {load:g} not bracketed by offsets up to {d_b:g}")
     side = 0
     for _ in range(200):
-        d = (d_a * f_b - d_b * f_a) / (f_b - f_a)
-        if not (min(d_a, d_b) < d < max(d_a, d_b)):
-            d = 0.5 * (d_a + d_b)
+        d = false_position(d_a, f_a, d_b, f_b)
         res = evaluate(d)
         f = res.load - load
         if not res.converged or abs(f) <= load_tol:
             return finish(res, abs(f) <= load_tol, "converged (load control)")
-        if (f > 0) == (f_a > 0):
-            d_a, f_a = d, f
-            if side == -1:
-                f_b *= 0.5
-            side = -1
-        else:
-            d_b, f_b = d, f
-            if side == 1:
-                f_a *= 0.5
-            side = 1
+        d_a, f_a, d_b, f_b, side = illinois(d_a, f_a, d_b, f_b, d, f, side)
         if abs(d_b - d_a) <= 1e-12 * (abs(d) + scale):
             break
     return finish(

@@ -10,26 +10,10 @@ import numpy as np
 from .._backend import array_device, computes_on_heights_device, dtype_name, to_device
 from .._validate import ParameterError
 from ..analysis.contact_geometry import contact_patches
+from .result import STATE_SCALARS
 from .solve import solve
 
 __all__ = ["PathError", "PathInterrupted", "approach_retract"]
-
-_SCALARS = (
-    "offset",
-    "load",
-    "repulsive_load",
-    "attractive_load",
-    "repulsive_area",
-    "attractive_area",
-    "perimeter",
-    "perimeter_edges",
-    "corrected_repulsive_area",
-    "mean_gap",
-    "iterations",
-    "residual",
-    "converged",
-    "solve_seconds",
-)
 
 
 class PathError(RuntimeError):
@@ -159,7 +143,7 @@ def approach_retract(
                 f"step {step} ({control} = {value:g}): {res.message}",
                 _dataset(rows, branch, fields, control, t0, attrs),
             )
-        row = {k: getattr(res, k) for k in _SCALARS}
+        row = {k: getattr(res, k) for k in STATE_SCALARS}
         row["repulsive_patches"] = int(contact_patches(res.pressure > 0)[1].size)
         if previous is None:
             row["jump"] = False
@@ -236,7 +220,7 @@ def _dataset(rows, branch, fields, control, t0, attrs):
     import xarray as xr
 
     n = len(rows)
-    columns = (*_SCALARS, "repulsive_patches", "jump")
+    columns = (*STATE_SCALARS, "repulsive_patches", "jump")
     data = {k: ("step", np.array([r[k] for r in rows]) if n else np.zeros(0)) for k in columns}
     data["branch"] = ("step", np.array(branch[:n], dtype=str))
     ds = xr.Dataset(data, coords={"step": np.arange(n)})

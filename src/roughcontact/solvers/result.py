@@ -8,7 +8,26 @@ import numpy as np
 
 from ..analysis.contact_geometry import AREA_CORRECTION_PER_EDGE
 
-__all__ = ["ContactResult"]
+__all__ = ["STATE_SCALARS", "ContactResult"]
+
+#: The numbers describing one solved state: the path datasets' per-step variables and,
+#: with message, tol and solver, the keys of :meth:`ContactResult.summary`.
+STATE_SCALARS = (
+    "offset",
+    "load",
+    "repulsive_load",
+    "attractive_load",
+    "repulsive_area",
+    "attractive_area",
+    "perimeter",
+    "perimeter_edges",
+    "corrected_repulsive_area",
+    "mean_gap",
+    "iterations",
+    "converged",
+    "residual",
+    "solve_seconds",
+)
 
 
 @dataclass(frozen=True)
@@ -92,27 +111,8 @@ class ContactResult:
 
     def summary(self) -> dict:
         """Scalars only, JSON-ready (the keys of ``roughcontact contact --json``)."""
-        keys = (
-            "offset",
-            "load",
-            "repulsive_load",
-            "attractive_load",
-            "repulsive_area",
-            "attractive_area",
-            "perimeter",
-            "perimeter_edges",
-            "corrected_repulsive_area",
-            "mean_gap",
-            "iterations",
-            "converged",
-            "residual",
-            "message",
-            "solve_seconds",
-            "tol",
-            "solver",
-        )
         out = {}
-        for k in keys:
+        for k in (*STATE_SCALARS, "message", "tol", "solver"):
             v = getattr(self, k)
             out[k] = (
                 v

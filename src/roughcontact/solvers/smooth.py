@@ -43,7 +43,7 @@ from .._backend import (
     to_numpy,
 )
 from .._validate import ParameterError
-from ._ops import StallGuard, check_problem, stiffness_operator
+from ._ops import StallGuard, check_problem, false_position, illinois, stiffness_operator
 from ._ops import dot as _dot
 from .observables import make_result
 
@@ -283,21 +283,10 @@ def _line_minimum(interaction, gap, s, kw, ks, slope0, rtol=1e-3, max_eval=60):
     side = 0
     alpha = hi
     while n_eval < max_eval:
-        alpha = (lo * f_hi - hi * f_lo) / (f_hi - f_lo)
-        if not (lo < alpha < hi):
-            alpha = 0.5 * (lo + hi)
+        alpha = false_position(lo, f_lo, hi, f_hi)
         f = slope(alpha)
         n_eval += 1
         if abs(f) <= rtol * abs(slope0):
             return alpha
-        if f < 0:
-            lo, f_lo = alpha, f
-            if side == -1:
-                f_hi *= 0.5
-            side = -1
-        else:
-            hi, f_hi = alpha, f
-            if side == 1:
-                f_lo *= 0.5
-            side = 1
+        lo, f_lo, hi, f_hi, side = illinois(lo, f_lo, hi, f_hi, alpha, f, side)
     return alpha
