@@ -19,6 +19,7 @@ __all__ = [
     "dot",
     "false_position",
     "illinois",
+    "lowest_hard_wall_offset",
     "stiffness_operator",
     "total",
 ]
@@ -153,16 +154,23 @@ class StallGuard:
         )
 
 
-def check_hard_wall_offset(heights, substrate, offset) -> None:
-    """Reject an offset that no impenetrable state reaches on a rigid-mean substrate.
+def lowest_hard_wall_offset(heights, substrate) -> float:
+    """The smallest offset a hard wall admits (length): mean(h) with a rigid mean, else -inf.
 
     With a rigid uniform mode the mean deflection is zero, so the mean gap is
     ``d - mean(h)``; below ``mean(h)`` every state interpenetrates somewhere.
     """
-    if offset is None or not substrate.rigid_mean:
+    if not substrate.rigid_mean:
+        return -math.inf
+    return float(array_namespace(heights).mean(heights))
+
+
+def check_hard_wall_offset(heights, substrate, offset) -> None:
+    """Reject an offset below :func:`lowest_hard_wall_offset` (no impenetrable state)."""
+    mean = lowest_hard_wall_offset(heights, substrate)
+    if offset is None or mean == -math.inf:
         return
     xp = array_namespace(heights)
-    mean = float(xp.mean(heights))
     if offset < mean - 1e-12 * (float(xp.max(xp.abs(heights))) + abs(offset)):
         raise ParameterError(
             f"offset must be >= mean(heights) = {mean:g} for a hard wall on a substrate with "

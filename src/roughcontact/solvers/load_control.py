@@ -23,7 +23,7 @@ import math
 import time
 
 from .._backend import array_namespace, dtype_name
-from ._ops import check_problem, false_position, illinois
+from ._ops import check_problem, false_position, illinois, lowest_hard_wall_offset
 
 __all__ = ["solve_at_load"]
 
@@ -86,9 +86,9 @@ def solve_at_load(
     # too much compression (f > 0) -> open up (larger d), else close in
     direction = 1.0 if f_a > 0 else -1.0
     step = 0.01 * scale
-    # a hard core on a rigid-mean substrate admits no offset at or below mean(h) (the
-    # surfaces would overlap everywhere): approach that bound by halving instead
-    lowest = float(xp.mean(h)) if interaction.hard_core and substrate.rigid_mean else -math.inf
+    # a hard core admits no offset at or below its lowest one (the surfaces would overlap
+    # everywhere): approach that bound by halving instead
+    lowest = lowest_hard_wall_offset(h, substrate) if interaction.hard_core else -math.inf
     for _ in range(60):
         d_b = d_a + direction * step
         near_bound = d_b <= lowest
