@@ -55,13 +55,12 @@ import importlib
 import json
 import math
 import os
-import platform
 import sys
 import time
 from importlib import metadata
 
 import numpy as np
-from hardwall import capture_stderr_fd, fft_pair_seconds, n_cores, surface
+from hardwall import capture_stderr_fd, fft_pair_seconds, machine_meta, n_cores, surface
 
 PEERS = ("adhesion", "tamaas")
 A0 = 1.0  # pixel size = equilibrium distance (lattice units)
@@ -608,18 +607,8 @@ def main(argv=None) -> int:
     ap.add_argument("--json", metavar="OUT", help="write all figures to this JSON file")
     args = ap.parse_args(argv)
 
-    import scipy
-
-    import roughcontact
-
     meta = dict(
-        machine=platform.machine(),
-        processor=platform.processor(),
-        cores=n_cores(),
-        python=platform.python_version(),
-        numpy=np.__version__,
-        scipy=scipy.__version__,
-        roughcontact=roughcontact.__version__,
+        machine_meta(),
         options=vars(args),
         surface=dict(hurst=0.8, rms_slope=0.1, short_cutoff=8, long_cutoff="n/2"),
     )

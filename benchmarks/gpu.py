@@ -35,12 +35,10 @@ from __future__ import annotations
 
 import argparse
 import json
-import platform
-import sys
 import time
 
 import numpy as np
-from hardwall import n_cores, surface
+from hardwall import machine_meta, surface
 
 import roughcontact as rc
 
@@ -191,8 +189,7 @@ def main(argv=None) -> int:
     ap.add_argument("--json", metavar="OUT")
     args = ap.parse_args(argv)
 
-    meta = {"python": sys.version.split()[0], "machine": platform.node(), "cores": n_cores()}
-    meta["roughcontact"] = rc.__version__
+    meta = machine_meta()
     if args.device != "cpu":
         cupy = _xp(args.device)
         props = cupy.cuda.runtime.getDeviceProperties(0)

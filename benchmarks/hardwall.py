@@ -46,6 +46,23 @@ def n_cores() -> int:
     return os.cpu_count() or 1
 
 
+def machine_meta() -> dict:
+    """Where and with what a benchmark ran (JSON-ready; shared by the scripts here)."""
+    import scipy
+
+    import roughcontact
+
+    return dict(
+        machine=platform.machine(),
+        processor=platform.processor(),
+        cores=n_cores(),
+        python=platform.python_version(),
+        numpy=np.__version__,
+        scipy=scipy.__version__,
+        roughcontact=roughcontact.__version__,
+    )
+
+
 def surface(n: int, seed: int) -> np.ndarray:
     """The SPEC §5 surface in roughcontact's convention (summits = maxima of h)."""
     import roughcontact as rc
@@ -296,18 +313,8 @@ def main(argv=None) -> int:
     ap.add_argument("--json", metavar="OUT", help="write all figures to this JSON file")
     args = ap.parse_args(argv)
 
-    import scipy
-
-    import roughcontact
-
     meta = dict(
-        machine=platform.machine(),
-        processor=platform.processor(),
-        cores=n_cores(),
-        python=platform.python_version(),
-        numpy=np.__version__,
-        scipy=scipy.__version__,
-        roughcontact=roughcontact.__version__,
+        machine_meta(),
         fft_workers=args.fft_workers,
         tol=args.tol,
         load=args.load,
