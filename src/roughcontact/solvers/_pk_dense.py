@@ -72,6 +72,9 @@ def iterate_dense(p, pb):
         any_out = bool(xp.any(out))
         viol = -float(xp.min(xp.where(out, gap, zero))) if any_out else 0.0
         residual = max(float(xp.max(xp.abs(g))), viol) / pb.scale
+        if not math.isfinite(residual):  # a non-finite pressure shows in the gap
+            message = f"non-finite pressure at iteration {it}"
+            break
         if residual <= pb.tol:
             if exact:
                 converged, message = True, "converged"
@@ -117,6 +120,7 @@ def iterate_dense(p, pb):
                 p_sum = total(p)
                 if not p_sum > 0:  # everything was clipped: restart from uniform pressure
                     p, delta, few = xp.full_like(p, target / p.shape[0]), False, False
+                    c = xp.ones_like(c)
                 else:
                     lam = target / p_sum
                     p = p * lam
@@ -129,11 +133,9 @@ def iterate_dense(p, pb):
                 exact = False
             else:
                 s, exact = conv(p) - hf, True
-        c = p > 0
+        # c is still p > 0: scaling by lam > 0 keeps the signs, and without a projection
+        # p - tau t stays positive on c and zero off it
         if pb.callback is not None and pb.callback(it, residual):
             message = "stopped by callback"
-            break
-        if not math.isfinite(total(p)):
-            message = f"non-finite pressure at iteration {it}"
             break
     return p, it, residual, converged, message
