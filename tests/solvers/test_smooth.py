@@ -113,3 +113,75 @@ def test_non_finite_state_stops_the_path_and_names_the_step(system):
     with pytest.raises(rc.PathError, match="step 3") as info:
         rc.approach_retract(h, sub, law, offsets=offsets)
     assert info.value.partial.sizes["step"] == 3  # the steps before it are kept
+
+
+# ----------------------------------------------------------- the block preconditioner
+def _converged_state(n=128):
+    h = rc.self_affine((n, n), hurst=0.8, rms_slope=0.1, short_cutoff=8, seed=1)
+    sub = rc.Substrate((n, n))
+    law = SmoothLJ93.from_adhesion_length(0.005)
+    # a few per cent repulsive area, the paper's regime
+    res = rc.solve(h, sub, law, offset=h.max() + 1.0 - 1.2 * h.std(), tol=1e-8)
+    assert res.converged and 0.01 < res.repulsive_area < 0.1
+    return sub, law, res
+
+
+def _operators(sub, law, gap):
+    from roughcontact.solvers._ops import compliance_operator, stiffness_operator
+    from roughcontact.solvers.smooth import _precondition, _self_stiffness, _stiff_sites
+
+    g = gap.ravel()
+    stiff, diagonal = _stiff_sites(law, g, _self_stiffness(sub))
+    kop, gop = stiffness_operator(sub), compliance_operator(sub)
+
+    def block(r):
+        return _precondition(r, stiff, diagonal, gop, kop, sub.rigid_mean)
+
+    def hessian(x):
+        return kop(x) + law.curvature(g) * x
+
+    return block, hessian, kop
+
+
+def test_block_preconditioner_is_symmetric_positive_definite():
+    sub, law, res = _converged_state(64)
+    block, _, kop = _operators(sub, law, res.gap)
+    rng = np.random.default_rng(0)
+    x, y = (v - v.mean() for v in rng.standard_normal((2, 64 * 64)))
+    bx, kbx = block(x)
+    by, _ = block(y)
+    assert abs(bx.mean()) < 1e-14  # stays in the mean-free space of the rigid mode
+    assert x @ by == pytest.approx(y @ bx, rel=1e-12)
+    assert x @ bx > 0 and y @ by > 0
+    np.testing.assert_allclose(kbx, kop(bx), atol=1e-12 * np.abs(kbx).max())
+
+
+def test_block_preconditioner_bounds_the_spectrum():
+    # Green's function alone: the largest eigenvalue of the preconditioned Hessian grows
+    # like V'' R / E* with the contact patches' size R; the block preconditioner bounds
+    # it (Lanczos on B H in the B^-1 inner product = eigenvalues of B^1/2 H B^1/2)
+    from scipy.sparse.linalg import LinearOperator, eigs
+
+    from roughcontact.solvers._ops import compliance_operator
+
+    sub, law, res = _converged_state(128)
+    block, hessian, _ = _operators(sub, law, res.gap)
+    green = compliance_operator(sub)
+    m = 128 * 128
+
+    def largest(precondition):
+        op = LinearOperator((m, m), matvec=lambda x: precondition(hessian(x - x.mean())))
+        return eigs(op, k=1, which="LR", tol=1e-4, return_eigenvectors=False).real.max()
+
+    lam_block = largest(lambda r: block(r - r.mean())[0])
+    lam_green = largest(lambda r: green(r - r.mean()))
+    assert lam_block < 3.0
+    assert lam_green > 2.0 * lam_block
+
+
+def test_refresh_every_is_validated(system):
+    h, sub = system
+    with pytest.raises(rc.ParameterError, match="refresh_every"):
+        rc.solvers.minimize_energy(
+            h, sub, SmoothLJ93.from_adhesion_length(0.005), offset=h.max(), refresh_every=0
+        )
