@@ -24,11 +24,13 @@ def curvature_at_minimum(sigma: float, a0: float) -> float:
 
 def lj93_terms(g, epsilon: float, sigma: float):
     """V_LJ, V_LJ' and V_LJ'' at gaps ``g > 0`` (energy/area, pressure, pressure/length)."""
-    s3 = (sigma / g) ** 3
-    s9 = s3**3
+    inv = 1.0 / g
+    s3 = sigma * inv
+    s3 = s3 * s3 * s3  # products, not ** 3: NumPy's pow is 4x slower (solvers' hot path)
+    s9 = s3 * s3 * s3
     v = epsilon * ((2.0 / 15.0) * s9 - s3)
-    dv = epsilon * (-(18.0 / 15.0) * s9 + 3.0 * s3) / g
-    d2v = epsilon * ((180.0 / 15.0) * s9 - 12.0 * s3) / (g * g)
+    dv = epsilon * (-(18.0 / 15.0) * s9 + 3.0 * s3) * inv
+    d2v = epsilon * ((180.0 / 15.0) * s9 - 12.0 * s3) * (inv * inv)
     return v, dv, d2v
 
 

@@ -163,22 +163,42 @@ class SmoothLJ93:
 
     def pressure(self, gap):
         """p(g) = -V'(g) (pressure; > 0 repulsive)."""
-        # the solvers' hot path: only V' on the core and the band, nothing else computed
+        # the solvers' hot path: the quartic on every site (zero beyond the cutoff, where
+        # x is clipped to 1), then the 9-3 core only where g < a0
         xp, g = as_gap(gap)
-        a0, dr, w = self.equilibrium_distance, self.range, self.work_of_adhesion
-        p = xp.zeros_like(g)
-        core = g < a0
-        if xp.any(core):
-            p[core] = -lj93_with_core(g[core], self.epsilon, self.sigma, a0)[1]
-        band = (g >= a0) & (g < a0 + dr)
-        if xp.any(band):
-            x = (g[band] - a0) / dr
-            p[band] = (-12.0 * w / dr) * x * (1.0 - x) ** 2
+        dr, w = self.range, self.work_of_adhesion
+        x = self._scaled_distance(xp, g)
+        p = 1.0 - x
+        p *= p
+        p *= x
+        p *= -12.0 * w / dr
+        self._core(xp, g, p, 1, sign=-1.0)
         return p
 
     def curvature(self, gap):
         """V''(g) (pressure / length)."""
-        return self._evaluate(gap)[2]
+        xp, g = as_gap(gap)
+        dr, w = self.range, self.work_of_adhesion
+        x = self._scaled_distance(xp, g)
+        d2v = 1.0 - 3.0 * x
+        x -= 1.0
+        d2v *= x
+        d2v *= -12.0 * w / dr**2
+        self._core(xp, g, d2v, 2, sign=1.0)
+        return d2v
+
+    def _scaled_distance(self, xp, g):
+        """x = (g - a0)/Δr clipped to [0, 1], exactly 1 from the cutoff on (a new array)."""
+        x = xp.clip((g - self.equilibrium_distance) / self.range, 0.0, 1.0)
+        # (a0 + Δr - a0)/Δr can round below 1: V, V', V'' must vanish exactly there
+        return xp.where(g < self.cutoff, x, 1.0)
+
+    def _core(self, xp, g, out, derivative, sign):
+        """Overwrite ``out`` where g < a0 with ``sign`` times that derivative of the core."""
+        core = g < self.equilibrium_distance
+        if xp.any(core):
+            terms = lj93_with_core(g[core], self.epsilon, self.sigma, self.equilibrium_distance)
+            out[core] = sign * terms[derivative]
 
     def classify(self, gap):
         """(repulsive, attractive) masks: g < a0, and a0 < g < a0 + Δr (SPEC §1)."""

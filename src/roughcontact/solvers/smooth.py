@@ -165,14 +165,14 @@ def minimize_energy(
         w = xp.zeros(n, dtype=h.dtype, device=array_device(h))
     kw = elastic_pressure(w)
 
-    def gradient(gap):
-        gr = kw - _local_pressure(interaction, gap)
+    def imbalance(p_int):
+        gr = kw - p_int
         if rigid:
             gr -= xp.mean(gr)  # the uniform mode is frozen: its force is the load
         return gr
 
     gap = base + w
-    gr = gradient(gap)
+    gr = imbalance(_local_pressure(interaction, gap))
     stiff = diagonal = None
     s = ks = z_old = None
     gz_old = 1.0
@@ -213,7 +213,7 @@ def minimize_energy(
             s, ks = -z, -kz
             slope0 = -gz
         z_old, gz_old = z, gz
-        alpha = _line_minimum(interaction, gap, s, kw, ks, slope0)
+        alpha, p_int = _line_minimum(interaction, gap, s, kw, ks, slope0, with_pressure=True)
         if not math.isfinite(alpha):
             message = f"line search failed at iteration {it}"
             break
@@ -222,7 +222,7 @@ def minimize_energy(
         if it % 50 == 0:
             kw = elastic_pressure(w)  # remove round-off drift of the incremental update
         gap = base + w
-        gr = gradient(gap)
+        gr = imbalance(p_int)
 
     kw = elastic_pressure(w)
     gap = base + w
@@ -295,12 +295,14 @@ def _precondition(gr, stiff, diagonal, compliance, elastic_pressure, rigid):
     return z, elastic_pressure(z)
 
 
-def _line_minimum(interaction, gap, s, kw, ks, slope0, rtol=1e-3, max_eval=60):
+def _line_minimum(interaction, gap, s, kw, ks, slope0, rtol=1e-3, max_eval=60, with_pressure=False):
     """Step ``alpha`` minimising E along ``w + alpha s`` (a root of the directional slope).
 
     phi'(alpha) = s.(kw + alpha ks) - s.p_int(gap + alpha s); the elastic part is linear
     in alpha. Bracket a sign change, then safeguarded secant (Illinois) steps until
-    |phi'| <= rtol |phi'(0)|.
+    |phi'| <= rtol |phi'(0)|. Returns ``alpha`` (NaN if no bracket was found), and with
+    ``with_pressure`` also the interaction pressure at ``gap + alpha s`` on every site
+    (the last evaluation, so the caller's gradient needs no evaluation of its own).
     """
     c0, c1 = _dot(s, kw), _dot(s, ks)
     xp = array_namespace(gap)
@@ -311,9 +313,24 @@ def _line_minimum(interaction, gap, s, kw, ks, slope0, rtol=1e-3, max_eval=60):
         sa, ga = s[active], gap[active]
     else:
         sa, ga = s, gap
+    last = {}
 
     def slope(alpha):
-        return c0 + alpha * c1 - _dot(sa, interaction.pressure(ga + alpha * sa))
+        p = interaction.pressure(ga + alpha * sa)
+        last.update(pressure=p, band=band)
+        return c0 + alpha * c1 - _dot(sa, p)
+
+    def result(alpha):
+        if not with_pressure:
+            return alpha
+        if not math.isfinite(alpha):
+            return alpha, None
+        p = last["pressure"]
+        if last["band"]:  # zero outside the band for every alpha <= 4
+            full = xp.zeros_like(gap)
+            full[active] = p
+            p = full
+        return alpha, p
 
     lo, f_lo = 0.0, slope0
     # Newton guess with the curvature at alpha = 0
@@ -322,6 +339,8 @@ def _line_minimum(interaction, gap, s, kw, ks, slope0, rtol=1e-3, max_eval=60):
     hi = min(max(hi, 1e-8), 4.0)
     f_hi = slope(hi)
     n_eval = 1
+    if abs(f_hi) <= rtol * abs(slope0):
+        return result(hi)
     while f_hi < 0 and n_eval < max_eval:
         if hi >= 4.0 and band:
             band, sa, ga = False, s, gap  # beyond the pre-selected band: use all sites
@@ -330,7 +349,7 @@ def _line_minimum(interaction, gap, s, kw, ks, slope0, rtol=1e-3, max_eval=60):
         f_hi = slope(hi)
         n_eval += 1
     if f_hi < 0:
-        return math.nan
+        return result(math.nan)
     side = 0
     alpha = hi
     while n_eval < max_eval:
@@ -338,6 +357,6 @@ def _line_minimum(interaction, gap, s, kw, ks, slope0, rtol=1e-3, max_eval=60):
         f = slope(alpha)
         n_eval += 1
         if abs(f) <= rtol * abs(slope0):
-            return alpha
+            return result(alpha)
         lo, f_lo, hi, f_hi, side = illinois(lo, f_lo, hi, f_hi, alpha, f, side)
-    return alpha
+    return result(alpha)
