@@ -68,6 +68,22 @@ ES = 1.0  # contact modulus E*
 
 
 # ------------------------------------------------------------------------------ set-up
+def make_law(adhesion_length: float, stiffness: float | None):
+    """The paper's potential at ℓa (k = E*/(2 a0)), or with site stiffness ``stiffness`` (E*/a0)."""
+    import roughcontact as rc
+
+    if stiffness is None:
+        return rc.SmoothLJ93.from_adhesion_length(
+            adhesion_length, contact_modulus=ES, pixel_size=A0
+        )
+    return rc.SmoothLJ93(
+        contact_modulus=ES,
+        pixel_size=A0,
+        stiffness=stiffness * ES / A0,
+        work_of_adhesion=adhesion_length * ES,
+    )
+
+
 def approach_offsets(h: np.ndarray, steps: int, end_load: float) -> dict:
     """The displacement schedule (see the module docstring)."""
     import roughcontact as rc
@@ -398,11 +414,9 @@ def format_summary(r) -> str:
 
 
 def run(args, log=print) -> dict:
-    import roughcontact as rc
-
     summaries, details, checks = [], [], []
     for la in args.adhesion_lengths:
-        law = rc.SmoothLJ93.from_adhesion_length(la, contact_modulus=ES, pixel_size=A0)
+        law = make_law(la, args.stiffness)
         if "adhesion" in args.peers:
             with contextlib.suppress(ImportError):
                 chk = check_potential(law, args.adhesion_core)
@@ -430,7 +444,7 @@ def run(args, log=print) -> dict:
             f"load {100 * sched['hardwall_area']:.2f} %), FFT pair {1e3 * fft:.2f} ms"
         )
         for la in args.adhesion_lengths:
-            law = rc.SmoothLJ93.from_adhesion_length(la, contact_modulus=ES, pixel_size=A0)
+            law = make_law(la, args.stiffness)
             results = {}
             ours = ("roughcontact", "roughcontact32") if args.float32 else ("roughcontact",)
             for code in (*ours, *args.peers):
@@ -569,6 +583,12 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--sizes", type=int, nargs="+", default=[256, 512, 1024])
     ap.add_argument("--adhesion-lengths", type=float, nargs="+", default=[0.005, 0.05])
+    ap.add_argument(
+        "--stiffness",
+        type=float,
+        default=None,
+        help="site stiffness k in E*/a0 (default 0.5, the paper); Delta_r from w = k Delta_r^2/12",
+    )
     ap.add_argument("--steps", type=int, default=10)
     ap.add_argument("--tol", type=float, default=1e-6, help="max force imbalance / E*")
     ap.add_argument("--peers", nargs="*", default=list(PEERS), choices=PEERS)
