@@ -119,6 +119,20 @@ def test_hard_wall_dense_loop_takes_the_same_steps(control, thickness):
     assert warm.converged and warm.iterations <= 2
 
 
+@pytest.mark.parametrize("control", [{"load": 2e-3}, {"offset": None}], ids=["load", "offset"])
+def test_plain_hard_wall_dense_loop_takes_the_same_steps(control):
+    from roughcontact.solvers import polonsky_keer
+
+    h = rc.self_affine((48, 40), hurst=0.7, rms_slope=0.2, short_cutoff=4, seed=5)
+    sub = rc.Substrate((48, 40))
+    if "offset" in control:
+        control = {"offset": float(h.max()) - 0.3 * float(h.std())}
+    ref = polonsky_keer(h, sub, tol=1e-10, precondition=False, **control)
+    got = polonsky_keer(strict(h), sub, tol=1e-10, precondition=False, **control)
+    assert ref.converged and got.converged and got.iterations == ref.iterations
+    np.testing.assert_allclose(got.pressure, ref.pressure, rtol=1e-9, atol=1e-12 * ref.load)
+
+
 def test_hard_wall_path():
     h = rc.sphere((32, 32), 12.0)
     sub = rc.Substrate((32, 32))

@@ -88,11 +88,17 @@ def iterate_dense(p, pb):
             break
         it += 1
 
-        g_norm = dot(g, g)
-        t = g + (g_norm / g_old) * t if delta else g
+        if pb.precondition is None:
+            z = g
+        else:
+            z = xp.where(c, pb.precondition(g), zero)
+            if target is not None:
+                z = xp.where(c, z - total(z) / n_c, zero)
+        g_z = dot(g, z)
+        t = z + (g_z / g_old) * t if delta else z
         if target is not None:  # keep the load fixed along the search direction
             t = xp.where(c, t - total(t) / n_c, zero)
-        g_old = g_norm
+        g_old = g_z
         r = conv(t)
         denom = dot(r, t)
         tau = dot(g, t) / denom if denom > 0 else math.nan

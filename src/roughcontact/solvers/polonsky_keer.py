@@ -15,9 +15,21 @@ i.e. the largest gap on a loaded site or interpenetration on an unloaded one, re
 to the rms height (``pixel_size`` for a flat surface). Pressures satisfy ``p >= 0``
 exactly and, under load control, the load exactly.
 
-Cost per iteration: one FFT convolution, plus a second one only on iterations where the
-projection changed the contact set (the deflection is otherwise updated from the
-convolution of the search direction, which is exact by linearity).
+Preconditioning (default on): the conjugate directions are built from
+:math:`z = P_c K P_c\, g` instead of the gap ``g`` on the contact set ``c`` (``K`` the
+substrate's stiffness, the inverse of ``G`` on the whole grid, ``P_c`` the restriction to
+``c``; under load control ``z`` is made mean-free on ``c``), the FFT preconditioner of
+Vollebregt (J. Comput. Phys. 257, 333 (2014)). The condition number of ``G`` on a contact
+patch of radius ``R`` grows like ``R`` (its uniform mode is soft, its pixel modes stiff);
+``P_c K P_c`` inverts it up to boundary effects, so the iteration count grows far less
+with the grid (SPEC §5 surface at 1e-3 E*: 96 → 43 iterations at 1024², 329 → 86 at
+2048²; ``benchmarks/hardwall.py``).
+
+Cost per iteration: one FFT convolution for the step (``G`` of the search direction),
+one for the preconditioner, and a third only on iterations where the projection changed
+the contact set (the deflection is otherwise updated from the convolution of the search
+direction, which is exact by linearity). ``precondition=False`` gives the plain method
+(one convolution fewer per iteration, many more iterations on large grids).
 
 Two implementations of the same iteration: on NumPy the vector work runs on index arrays
 of the contact set (a few per cent of the grid at small loads, so cheaper than full-grid
@@ -49,6 +61,7 @@ from ._ops import (
     check_hard_wall_offset,
     check_problem,
     compliance_operator,
+    stiffness_operator,
 )
 from ._ops import dot as _dot
 from ._pk_dense import iterate_dense
@@ -120,6 +133,7 @@ def polonsky_keer(
     tol=None,
     max_iter=5000,
     callback=None,
+    precondition=True,
     device=None,
     dtype=None,
 ):
@@ -143,6 +157,9 @@ def polonsky_keer(
         Iteration cap; reaching it gives ``converged=False``.
     callback : callable, optional
         ``callback(iteration, residual)`` after every iteration; return True to stop.
+    precondition : bool
+        Precondition the conjugate directions with the substrate's stiffness restricted
+        to the contact set (see the module docstring); False gives plain Polonsky–Keer.
     device : {None, "cpu", "cuda", "cuda:N"}, optional
         Where to compute (default: where ``heights`` live); see :func:`roughcontact.to_device`.
     dtype : {None, "float64", "float32"}, optional
@@ -189,6 +206,7 @@ def polonsky_keer(
         offset=offset,
         scale=float(xp.std(hf)) or substrate.pixel_size,
         winkler=0.5 * substrate.contact_modulus / substrate.pixel_size,
+        precondition=stiffness_operator(substrate) if precondition else None,
         tol=tol,
         max_iter=max_iter,
         callback=callback,
@@ -217,6 +235,7 @@ class _Problem:
     offset: float | None  # displacement control
     scale: float  # residual normalisation (length)
     winkler: float  # local stiffness for restarts from overlap (pressure/length)
+    precondition: object  # g -> K g (the stiffness), or None for plain Polonsky-Keer
     tol: float
     max_iter: int
     callback: object
@@ -266,11 +285,19 @@ def _iterate_sparse(p, pb, substrate):
             break
         it += 1
 
-        g_norm = _dot(g_c, g_c)
-        t_c = g_c + (g_norm / g_old) * t_c if delta else g_c.copy()
+        if pb.precondition is None:
+            z_c = g_c
+        else:
+            tb[idx] = g_c
+            z_c = pb.precondition(tb)[idx]
+            tb[idx] = 0.0
+            if target is not None:
+                z_c -= z_c.mean()
+        g_z = _dot(g_c, z_c)
+        t_c = z_c + (g_z / g_old) * t_c if delta else z_c.copy()
         if target is not None:
             t_c -= t_c.mean()  # keep the load fixed along the search direction
-        g_old = g_norm
+        g_old = g_z
         tb[idx] = t_c
         r = conv(tb)
         tb[idx] = 0.0

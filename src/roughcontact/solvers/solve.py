@@ -41,11 +41,12 @@ def solve(
         Elastic substrate (shape must match ``heights``).
     interaction : HardWall or an interaction law, optional
         The surface interaction (default: :class:`HardWall`). The hard wall is solved by
-        constrained conjugate gradients (Polonsky & Keer), smooth laws (SmoothLJ93,
-        LennardJones93, soft-core Exponential) by Green's-function-preconditioned
-        nonlinear CG, hard-core adhesive laws (Exponential, MaugisDugdale) by
-        bound-constrained projected CG. Load control for adhesive laws locates the
-        offset that carries the load on a stable branch (see ``load_control``).
+        constrained conjugate gradients (Polonsky & Keer, preconditioned by the stiffness
+        on the contact set), smooth laws (SmoothLJ93, LennardJones93, soft-core
+        Exponential) by block-preconditioned nonlinear CG, hard-core adhesive laws
+        (Exponential, MaugisDugdale) by bound-constrained projected CG. Load control for
+        adhesive laws locates the offset that carries the load on a stable branch (see
+        ``load_control``).
     load : float, optional
         Load control: mean pressure :math:`\\bar p = N/A_0` (same units as the contact
         modulus; > 0 pushes the bodies together).
