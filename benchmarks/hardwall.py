@@ -12,8 +12,10 @@ they are imported inside functions, so a missing peer is reported and skipped.
 
 What is timed (wall clock, ``time.perf_counter``; median over ``--repeats`` cold solves):
 
-* roughcontact: the ``rc.solve`` call. The ``Substrate`` (stiffness array) is built once
-  beforehand and reused; the result record (observables) is included.
+* roughcontact: the ``polonsky_keer`` call (what ``rc.solve`` runs for a hard wall;
+  ``rc-plain`` with ``--plain``: the same without its preconditioner). The ``Substrate``
+  (stiffness array) is built once beforehand and reused; the result record (observables)
+  is included.
 * tamaas: ``PolonskyKeerRey.solve`` only. The model (``ModelFactory.createModel``, its
   FFT plans) and the solver object are built fresh for every repeat, outside the timer.
 * ContactMechanics: ``constrained_conjugate_gradients`` only. The
@@ -114,14 +116,15 @@ def capture_stderr_fd():
 # dict with the pressure field (> 0 compressive), offset d, time, iterations.
 
 
-def solve_rc(h: np.ndarray, load: float, tol: float, repeats: int) -> dict:
+def solve_rc(h: np.ndarray, load: float, tol: float, repeats: int, precondition=True) -> dict:
     import roughcontact as rc
+    from roughcontact.solvers import polonsky_keer
 
     sub = rc.Substrate(h.shape, contact_modulus=1.0, pixel_size=1.0)
     times, res = [], None
     for _ in range(repeats):
         t0 = time.perf_counter()
-        res = rc.solve(h, sub, rc.HardWall(), load=load, tol=tol)
+        res = polonsky_keer(h, sub, load=load, tol=tol, precondition=precondition)
         times.append(time.perf_counter() - t0)
     return dict(
         pressure=np.asarray(res.pressure),
@@ -228,19 +231,21 @@ def solve_contactmechanics(h: np.ndarray, load: float, tol: float, repeats: int)
 
 SOLVERS = {
     "roughcontact": solve_rc,
+    # the same solver without its preconditioner (plain Polonsky-Keer), for comparison
+    "rc-plain": lambda *args: solve_rc(*args, precondition=False),
     "tamaas": solve_tamaas,
     "contactmechanics": solve_contactmechanics,
 }
 
 
 # ------------------------------------------------------------------------------ main
-def run(sizes, repeats, tol, peers, load, seed, fft_workers, log=print) -> list[dict]:
+def run(sizes, repeats, tol, peers, load, seed, fft_workers, log=print, plain=False):
     rows = []
     for n in sizes:
         h = surface(n, seed)
         fft = fft_pair_seconds(n, fft_workers)
         results = {}
-        for code in ("roughcontact", *peers):
+        for code in ("roughcontact", *(["rc-plain"] if plain else []), *peers):
             try:
                 out = SOLVERS[code](h, load, tol, repeats)
             except ImportError as exc:
@@ -310,6 +315,9 @@ def main(argv=None) -> int:
     ap.add_argument(
         "--fft-workers", type=int, default=n_cores(), help="threads for the FFT-pair reference"
     )
+    ap.add_argument(
+        "--plain", action="store_true", help="also time roughcontact without its preconditioner"
+    )
     ap.add_argument("--json", metavar="OUT", help="write all figures to this JSON file")
     args = ap.parse_args(argv)
 
@@ -339,6 +347,7 @@ def main(argv=None) -> int:
         args.seed,
         args.fft_workers,
         log=lambda s: print(s, flush=True),
+        plain=args.plain,
     )
     if args.json:
         with open(args.json, "w") as fh:

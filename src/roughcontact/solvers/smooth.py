@@ -24,10 +24,11 @@ and hence with the grid (measured at the converged last state of the SPEC §5 ap
 sizes, smallest eigenvalue almost unchanged), which halves the iterations at 512² and
 1024² (``benchmarks/adhesive.py``). The stiff set and the diagonal are computed from the
 current gap at every ``refresh_every``-th iteration (the conjugate directions are kept;
-refreshing every iteration costs more iterations than it saves). The first
+refreshing every iteration costs more iterations than it saves), and at the first
+iteration of a warm start. From a cold start (no ``initial``) the first
 ``refresh_every - 1`` iterations use the Green's function alone, whose steps move whole
-regions coherently: from a cold start they set up the elastic field around the contacts
-first. (Starting with the block preconditioner moves the stiff sites alone, and a stiff,
+regions coherently and so set up the elastic field around the contacts first. (Starting
+cold with the block preconditioner moves the stiff sites alone, and a stiff,
 short-ranged wall then captures their neighbours in a metastable state of higher energy.)
 
 Per iteration the solver needs two FFT convolutions, the preconditioner (Green's
@@ -196,7 +197,7 @@ def minimize_energy(
             break
         it += 1
         restart = s is None or it % restart_every == 0
-        if it % refresh_every == 0:
+        if it % refresh_every == 0 or (it == 1 and initial is not None):
             stiff, diagonal = _stiff_sites(interaction, gap, self_stiffness)
         z, kz = _precondition(gr, stiff, diagonal, compliance, elastic_pressure, rigid)
         gz = _dot(gr, z)
