@@ -114,3 +114,18 @@ def test_bad_parameters_name_the_parameter(kwargs, name):
 def test_shape_mismatch_is_an_error():
     with pytest.raises(ParameterError, match="shape"):
         Substrate((8, 8)).deflection(np.zeros((8, 9)))
+
+
+def test_self_stiffness():
+    # K_ii: the pressure at a site per unit deflection of that site alone ...
+    sub = Substrate((64, 48), thickness=12.0, poisson=0.3)
+    unit = np.zeros(sub.shape)
+    unit[5, 7] = 1.0
+    assert sub.self_stiffness == pytest.approx(sub.pressure(unit)[5, 7], rel=1e-12)
+    # ... and for a half-space the mean of E*|q|/2 over the Brillouin zone [-pi, pi]^2,
+    # E* pi (sqrt(2) + asinh(1)) / (6 a0), approached as the grid is refined
+    continuum = np.pi * (np.sqrt(2.0) + np.arcsinh(1.0)) / 6.0
+    assert Substrate((256, 256)).self_stiffness == pytest.approx(continuum, rel=1e-3)
+    assert Substrate((64, 64), contact_modulus=3.0, pixel_size=0.5).self_stiffness == (
+        pytest.approx(3.0 / 0.5 * continuum, rel=1e-2)
+    )

@@ -128,10 +128,10 @@ def _converged_state(n=128):
 
 def _operators(sub, law, gap):
     from roughcontact.solvers._ops import compliance_operator, stiffness_operator
-    from roughcontact.solvers.smooth import _precondition, _self_stiffness, _stiff_sites
+    from roughcontact.solvers.smooth import _precondition, _stiff_sites
 
     g = gap.ravel()
-    stiff, diagonal = _stiff_sites(law, g, _self_stiffness(sub))
+    stiff, diagonal = _stiff_sites(law, g, sub.self_stiffness)
     kop, gop = stiffness_operator(sub), compliance_operator(sub)
 
     def block(r):

@@ -114,6 +114,15 @@ class Substrate:
         """True if the uniform mode is rigid (half-space, or ν = 1/2 layer)."""
         return math.isinf(self.stiffness[0, 0])
 
+    @property
+    def self_stiffness(self) -> float:
+        r"""Diagonal :math:`K_{ii}` of the stiffness operator (pressure / length): the
+        pressure at a site per unit deflection of that site alone, the mean of
+        :math:`k(q)` over all Fourier modes (a rigid uniform mode counts as zero).
+        About :math:`1.2\,E^*/a_0` for a half-space."""
+        k = np.where(np.isinf(self.stiffness), 0.0, self.stiffness)
+        return float(_sum_over_modes(np, k, self.shape[1])) / (self.shape[0] * self.shape[1])
+
     def _arrays(self, like):
         """Stiffness and compliance on the namespace, device and precision of ``like``.
 
@@ -176,7 +185,13 @@ class Substrate:
         xp = array_namespace(deflection)
         wq = rfft2(deflection)
         e = k * (xp.real(wq) ** 2 + xp.imag(wq) ** 2)
-        # rfft stores only ny//2+1 columns: interior columns stand for two modes each
-        ny = self.shape[1]
-        total = 2.0 * xp.sum(e) - xp.sum(e[:, 0]) - (xp.sum(e[:, -1]) if ny % 2 == 0 else 0.0)
-        return float(0.5 * self.pixel_size**2 * total / (self.shape[0] * ny))
+        total = _sum_over_modes(xp, e, self.shape[1])
+        return float(0.5 * self.pixel_size**2 * total / (self.shape[0] * self.shape[1]))
+
+
+def _sum_over_modes(xp, e, ny):
+    """Sum over all Fourier modes of a field given on the ``rfft2`` layout.
+
+    rfft stores only ny//2+1 columns: the interior columns stand for two modes each.
+    """
+    return 2.0 * xp.sum(e) - xp.sum(e[:, 0]) - (xp.sum(e[:, -1]) if ny % 2 == 0 else 0.0)

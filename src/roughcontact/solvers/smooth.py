@@ -36,8 +36,9 @@ function on the soft sites) and the elastic pressure of the preconditioned gradi
 with no stiff site (before contact) the second is not needed, because then
 :math:`K K^{-1}` is the identity on the non-uniform modes. The step length is an exact
 line minimisation, cheap because the elastic energy is quadratic along the line and the
-interaction is local. (Preconditioned L-BFGS with the same line search was tried and
-took the same number of iterations as conjugate gradients.)
+interaction is local. (With the earlier Green's-function preconditioner, preconditioned
+L-BFGS with the same line search took the same number of iterations as conjugate
+gradients.)
 
 Convergence measure (``residual``): the largest force imbalance per unit area,
 ``max |K w - p_int(g)|`` (excluding the uniform mode when it is rigid), divided by the
@@ -48,8 +49,6 @@ from __future__ import annotations
 
 import math
 import time
-
-import numpy as np
 
 from .._backend import (
     array_device,
@@ -77,15 +76,15 @@ __all__ = ["minimize_energy"]
 STIFF_FRACTION = 0.1
 
 
-def _local_pressure(interaction, gap):
-    """Interaction pressure, evaluated only where the gap is inside the cutoff."""
-    cutoff = interaction.cutoff
+def _local(evaluate, cutoff, gap):
+    """``evaluate(gap)`` (the interaction's pressure or curvature) only where the gap is
+    inside the cutoff; zero beyond it, where every law vanishes."""
     if not math.isfinite(cutoff):
-        return interaction.pressure(gap)
+        return evaluate(gap)
     inside = gap < cutoff
-    p = array_namespace(gap).zeros_like(gap)
-    p[inside] = interaction.pressure(gap[inside])
-    return p
+    out = array_namespace(gap).zeros_like(gap)
+    out[inside] = evaluate(gap[inside])
+    return out
 
 
 @computes_on_heights_device
@@ -151,7 +150,7 @@ def minimize_energy(
     xp = array_namespace(h)
     elastic_pressure = stiffness_operator(substrate)
     compliance = compliance_operator(substrate)
-    self_stiffness = _self_stiffness(substrate)
+    self_stiffness = substrate.self_stiffness
 
     base = offset - xp.reshape(h, (-1,))  # gap = base + w
     if initial is not None:
@@ -173,7 +172,7 @@ def minimize_energy(
         return gr
 
     gap = base + w
-    gr = imbalance(_local_pressure(interaction, gap))
+    gr = imbalance(_local(interaction.pressure, interaction.cutoff, gap))
     stiff = diagonal = None
     s = ks = z_old = None
     gz_old = 1.0
@@ -227,7 +226,7 @@ def minimize_energy(
 
     kw = elastic_pressure(w)
     gap = base + w
-    p_int = _local_pressure(interaction, gap)
+    p_int = _local(interaction.pressure, interaction.cutoff, gap)
     rep, att = interaction.classify(gap)
     return make_result(
         h,
@@ -247,17 +246,6 @@ def minimize_energy(
     )
 
 
-def _self_stiffness(substrate) -> float:
-    r"""Diagonal :math:`K_{ii}` of the stiffness operator (pressure / length): the mean of
-    :math:`k(q)` over all Fourier modes (a rigid uniform mode counts as zero)."""
-    k = substrate.stiffness
-    k = np.where(np.isinf(k), 0.0, k)
-    # rfft layout: interior columns stand for two modes each
-    ny = substrate.shape[1]
-    total = 2.0 * k.sum() - k[:, 0].sum() - (k[:, -1].sum() if ny % 2 == 0 else 0.0)
-    return float(total) / (substrate.shape[0] * ny)
-
-
 def _stiff_sites(interaction, gap, self_stiffness):
     """The preconditioner's stiff sites, V'' > STIFF_FRACTION K_ii, and 1/(K_ii + V'') there.
 
@@ -265,13 +253,7 @@ def _stiff_sites(interaction, gap, self_stiffness):
     Green's function alone).
     """
     xp = array_namespace(gap)
-    cutoff = interaction.cutoff
-    curvature = xp.zeros_like(gap)
-    if math.isfinite(cutoff):
-        inside = gap < cutoff
-        curvature[inside] = interaction.curvature(gap[inside])
-    else:
-        curvature = interaction.curvature(gap)
+    curvature = _local(interaction.curvature, interaction.cutoff, gap)
     stiff = curvature > STIFF_FRACTION * self_stiffness
     if not bool(xp.any(stiff)):
         return None, None
