@@ -269,9 +269,9 @@ def _precondition(gr, stiff, diagonal, compliance, elastic_pressure, rigid):
     """
     xp = array_namespace(gr)
     if stiff is None:
-        z = compliance(gr)
-        # K K^-1 is the identity on the non-uniform modes: no second convolution
-        return z, (gr - xp.mean(gr)) if rigid else gr
+        # K K^-1 is the identity on the non-uniform modes, and gr has no uniform mode
+        # when it is rigid: no second convolution
+        return compliance(gr), gr
     z = xp.where(stiff, gr * diagonal, compliance(xp.where(stiff, 0.0, gr)))
     if rigid:
         z -= xp.mean(z)
