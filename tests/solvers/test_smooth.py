@@ -151,7 +151,8 @@ def test_block_preconditioner_is_symmetric_positive_definite():
     bx, kbx = block(x)
     by, _ = block(y)
     assert abs(bx.mean()) < 1e-14  # stays in the mean-free space of the rigid mode
-    assert x @ by == pytest.approx(y @ bx, rel=1e-12)
+    # symmetric up to the float32 rounding of its Green's-function block
+    assert x @ by == pytest.approx(y @ bx, rel=1e-6)
     assert x @ bx > 0 and y @ by > 0
     np.testing.assert_allclose(kbx, kop(bx), atol=1e-12 * np.abs(kbx).max())
 
