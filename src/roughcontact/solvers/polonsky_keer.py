@@ -22,7 +22,7 @@ substrate's stiffness, the inverse of ``G`` on the whole grid, ``P_c`` the restr
 Vollebregt (J. Comput. Phys. 257, 333 (2014)). The condition number of ``G`` on a contact
 patch of radius ``R`` grows like ``R`` (its uniform mode is soft, its pixel modes stiff);
 ``P_c K P_c`` inverts it up to boundary effects, so the iteration count grows far less
-with the grid (SPEC §5 surface at 1e-3 E*: 96 → 43 iterations at 1024², 329 → 85 at
+with the grid (SPEC §5 surface at 1e-3 E*: 96 → 43 iterations at 1024², 329 → 88 at
 2048²; ``benchmarks/hardwall.py``).
 
 Cost per iteration: one FFT convolution for the step (``G`` of the search direction),
