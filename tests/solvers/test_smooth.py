@@ -127,7 +127,11 @@ def _converged_state(n=128):
 
 
 def _operators(sub, law, gap):
-    from roughcontact.solvers._ops import compliance_operator, stiffness_operator
+    from roughcontact.solvers._ops import (
+        compliance_operator,
+        in_single_precision,
+        stiffness_operator,
+    )
     from roughcontact.solvers.smooth import _precondition, _stiff_sites
 
     g = gap.ravel()
@@ -135,7 +139,7 @@ def _operators(sub, law, gap):
     kop, gop = stiffness_operator(sub), compliance_operator(sub)
 
     def block(r):
-        return _precondition(r, stiff, diagonal, gop, kop, sub.rigid_mean)
+        return _precondition(r, stiff, diagonal, gop, in_single_precision(gop), kop, sub.rigid_mean)
 
     def hessian(x):
         return kop(x) + law.curvature(g) * x

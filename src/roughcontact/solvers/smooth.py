@@ -153,6 +153,8 @@ def minimize_energy(
     xp = array_namespace(h)
     elastic_pressure = stiffness_operator(substrate)
     compliance = compliance_operator(substrate)
+    # the preconditioner's Green's-function block, in single precision (see _precondition)
+    compliance_single = in_single_precision(compliance)
     self_stiffness = substrate.self_stiffness
 
     base = offset - xp.reshape(h, (-1,))  # gap = base + w
@@ -201,7 +203,9 @@ def minimize_energy(
         restart = s is None or it % restart_every == 0
         if it % refresh_every == 0 or (it == 1 and initial is not None):
             stiff, diagonal = _stiff_sites(interaction, gap, self_stiffness)
-        z, kz = _precondition(gr, stiff, diagonal, compliance, elastic_pressure, rigid)
+        z, kz = _precondition(
+            gr, stiff, diagonal, compliance, compliance_single, elastic_pressure, rigid
+        )
         gz = _dot(gr, z)
         beta = 0.0 if restart else max(0.0, (gz - _dot(gr, z_old)) / gz_old)  # PR+
         if beta > 0:  # in place: s = -z + beta s, ks = -K z + beta ks
@@ -263,7 +267,7 @@ def _stiff_sites(interaction, gap, self_stiffness):
     return stiff, 1.0 / (self_stiffness + xp.where(stiff, curvature, 0.0))
 
 
-def _precondition(gr, stiff, diagonal, compliance, elastic_pressure, rigid):
+def _precondition(gr, stiff, diagonal, compliance, compliance_single, elastic_pressure, rigid):
     """Block-preconditioned gradient ``z`` and its elastic pressure ``K z``.
 
     ``z = diagonal * gr`` on the stiff sites and ``K^-1 (gr on the other sites)`` there;
@@ -277,7 +281,7 @@ def _precondition(gr, stiff, diagonal, compliance, elastic_pressure, rigid):
         return compliance(gr), gr
     # the Green's function in single precision: z only steers the search direction, and
     # its elastic pressure K z below is computed in full precision from z itself
-    soft_block = in_single_precision(compliance)(xp.where(stiff, 0.0, gr))
+    soft_block = compliance_single(xp.where(stiff, 0.0, gr))
     z = xp.where(stiff, gr * diagonal, soft_block)
     if rigid:
         z -= xp.mean(z)
