@@ -12,7 +12,7 @@ from __future__ import annotations
 import math
 
 from .._backend import array_device, array_namespace, dtype_name, to_numpy
-from ._ops import POINT_CORRECTIONS, StallGuard, dot, total
+from ._ops import POINT_CORRECTIONS, ReliableUpdates, StallGuard, dot, total
 
 
 def _count(xp, mask) -> int:
@@ -53,6 +53,11 @@ def iterate_dense(p, pb):
     c = p > 0
     t = kernel = None
     delta, g_old, exact = False, 1.0, True
+    reliable = ReliableUpdates(pb.tol)
+
+    def fast(op, x):  # op in fast precision, the result back in the heights' precision
+        return xp.astype(op(x), hf.dtype)
+
     converged, message, residual, it = False, "iteration cap reached", math.inf, 0
     stall = StallGuard(dtype_name(hf))
     while True:
@@ -75,23 +80,26 @@ def iterate_dense(p, pb):
         if not math.isfinite(residual):  # a non-finite pressure shows in the gap
             message = f"non-finite pressure at iteration {it}"
             break
-        if residual <= pb.tol:
-            if exact:
-                converged, message = True, "converged"
-                break
-            s, exact = conv(p) - hf, True  # confirm without round-off drift
+        if (update := reliable.check(residual, exact)) == "refresh":
+            s, exact = conv(p) - hf, True
             continue
+        if update == "restart":
+            delta = False
+        if residual <= pb.tol:
+            converged, message = True, "converged"
+            break
         if (stalled := stall(residual)) is not None:
             message = stalled
             break
         if it >= pb.max_iter:
             break
         it += 1
+        reliable.step()
 
         if pb.precondition is None:
             z = g
         else:
-            z = xp.where(c, pb.precondition(g), zero)
+            z = xp.where(c, fast(pb.precondition, g), zero)
             if target is not None:
                 z = xp.where(c, z - total(z) / n_c, zero)
         g_z = dot(g, z)
@@ -99,7 +107,7 @@ def iterate_dense(p, pb):
         if target is not None:  # keep the load fixed along the search direction
             t = xp.where(c, t - total(t) / n_c, zero)
         g_old = g_z
-        r = conv(t)
+        r = fast(pb.fast_conv, t)
         denom = dot(r, t)
         tau = dot(g, t) / denom if denom > 0 else math.nan
         if not math.isfinite(tau):
@@ -119,26 +127,26 @@ def iterate_dense(p, pb):
             c = p > 0
             t = xp.where(c, t, zero)
             changed = clipped | out  # where p differs from p_new = p - tau t
-            few = _count(xp, changed) <= POINT_CORRECTIONS
-            correction = p - p_new if few else None
-            lam = 1.0
+            correction = p - p_new
+            # s = G(p_new + correction) - h: point responses for a few sites, else a
+            # convolution of the correction
+            s = s - tau * r
+            if _count(xp, changed) <= POINT_CORRECTIONS:
+                kernel = kernel or _RollKernel(conv, hf, pb.shape)
+                s = kernel.add(s, changed, correction)
+            else:
+                s = s + fast(pb.fast_conv, correction)
+            exact = False
             if target is not None:
                 p_sum = total(p)
                 if not p_sum > 0:  # everything was clipped: restart from uniform pressure
-                    p, delta, few = xp.full_like(p, target / p.shape[0]), False, False
+                    p, delta = xp.full_like(p, target / p.shape[0]), False
                     c = xp.ones_like(c)
-                else:
+                    s, exact = conv(p) - hf, True
+                elif p_sum != target:  # back to the load: s = lam (u + G c) - h
                     lam = target / p_sum
                     p = p * lam
-            if few:
-                # few sites changed: add their point responses instead of a convolution
-                kernel = kernel or _RollKernel(conv, hf, pb.shape)
-                s = kernel.add(s - tau * r, changed, correction)
-                if lam != 1.0:  # s = lam (u + G c) - h
                     s = lam * s + (lam - 1.0) * hf
-                exact = False
-            else:
-                s, exact = conv(p) - hf, True
         # c is still p > 0: scaling by lam > 0 keeps the signs, and without a projection
         # p - tau t stays positive on c and zero off it
         if pb.callback is not None and pb.callback(it, residual):

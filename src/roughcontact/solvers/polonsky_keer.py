@@ -26,12 +26,22 @@ with the grid (SPEC §5 surface at 1e-3 E*: 96 → 43 iterations at 1024², 329 
 2048²; ``benchmarks/hardwall.py``).
 
 Cost per iteration: one FFT convolution for the step (``G`` of the search direction),
-one for the preconditioner (in single precision, which costs a third to a half of a
-float64 FFT pair and only perturbs the search direction), and a third only on
-iterations where the projection changed the contact set (the deflection is otherwise
-updated from the convolution of the search direction, which is exact by linearity).
-``precondition=False`` gives the plain method (one convolution fewer per iteration, many
-more iterations on large grids).
+one for the preconditioner, and a third only on iterations where the projection changed
+the contact set at more than a few sites (``G`` of that correction; otherwise the
+deflection is updated from the step's convolution, exact by linearity). ``precondition=
+False`` gives the plain method (one convolution fewer per iteration, many more
+iterations on large grids).
+
+Mixed precision: all of these convolutions run in single precision (a float32 FFT pair
+costs a third to a half of a float64 one), with "reliable updates" (Sleijpen & van der
+Vorst, Computing 56, 141 (1996); Clark et al., Comput. Phys. Commun. 181, 1517 (2010)).
+The step and correction convolutions only ever update ``G p - h`` incrementally, so
+their rounding (~1e-7 of the increment) accumulates to ~1e-7 of the distance travelled
+since the last exact evaluation. That evaluation, one float64 convolution of the whole
+pressure, is redone whenever the residual has dropped by :data:`._ops.RELIABLE_DROP` since the
+last one (or after :data:`._ops.RELIABLE_EVERY` iterations), and convergence is only ever
+declared on an exact one. The answer is therefore as accurate as a float64 solve
+(tested against the float64 iteration); only the search directions see the rounding.
 
 Two implementations of the same iteration: on NumPy the vector work runs on index arrays
 of the contact set (a few per cent of the grid at small loads, so cheaper than full-grid
@@ -59,11 +69,12 @@ from .._backend import (
 from .._validate import ParameterError
 from ._ops import (
     POINT_CORRECTIONS,
+    ReliableUpdates,
     StallGuard,
     check_hard_wall_offset,
     check_problem,
     compliance_operator,
-    in_single_precision,
+    in_precision,
     stiffness_operator,
 )
 from ._ops import dot as _dot
@@ -71,6 +82,13 @@ from ._pk_dense import iterate_dense
 from .observables import make_result
 
 __all__ = ["polonsky_keer"]
+
+
+def _axpy(a, x, y):
+    """y += a x in place, in one pass and without a temporary (BLAS)."""
+    from scipy.linalg.blas import get_blas_funcs
+
+    get_blas_funcs("axpy", (x, y))(x, y, a=a)
 
 
 def _subtract_heights(u, hf):
@@ -201,16 +219,18 @@ def polonsky_keer(
         return result(zero, zero, h_max if offset is None else offset, 0, 0.0, True, "no contact")
 
     p = _initial_pressure(initial, h, substrate, load, offset)
+    fast = xp.float32  # the convolutions' precision (see "Mixed precision" above)
     problem = _Problem(
         hf=hf,
         shape=tuple(h.shape),
         conv=conv,
+        fast_dtype=fast,
+        fast_conv=conv if h.dtype == fast else in_precision(conv, fast),
         target=None if load is None else load * hf.shape[0],
         offset=offset,
         scale=float(xp.std(hf)) or substrate.pixel_size,
         winkler=0.5 * substrate.contact_modulus / substrate.pixel_size,
-        # in single precision: it only steers the directions (residuals stay float64)
-        precondition=in_single_precision(stiffness_operator(substrate)) if precondition else None,
+        precondition=in_precision(stiffness_operator(substrate), fast) if precondition else None,
         tol=tol,
         max_iter=max_iter,
         callback=callback,
@@ -234,12 +254,14 @@ class _Problem:
 
     hf: object  # flat heights
     shape: tuple  # the grid
-    conv: object  # p -> G p
+    conv: object  # p -> G p (exact, in the heights' precision)
+    fast_dtype: object  # the precision of the two below
+    fast_conv: object  # p -> G p in fast_dtype (for increments only)
     target: float | None  # total pressure (load control) or None
     offset: float | None  # displacement control
     scale: float  # residual normalisation (length)
     winkler: float  # local stiffness for restarts from overlap (pressure/length)
-    precondition: object  # g -> K g (the stiffness), or None for plain Polonsky-Keer
+    precondition: object  # g -> K g (the stiffness) in fast_dtype, or None (plain)
     tol: float
     max_iter: int
     callback: object
@@ -252,13 +274,21 @@ def _iterate_sparse(p, pb, substrate):
     kernel = _PointKernel(substrate, conv, hf.dtype)
     s = _subtract_heights(conv(p), hf)  # s = u - h, so that the gap is s + d
     idx = np.flatnonzero(p > 0)
-    tb = np.zeros_like(hf)  # full-grid buffer for the search direction (zero off the set)
+    # full-grid buffer for what is convolved in fast precision (zero off the sites used)
+    tb = np.zeros(n, dtype=pb.fast_dtype)
     t_c = None
     delta, g_old = False, 1.0
     converged, message, residual, it = False, "iteration cap reached", math.inf, 0
     stall = StallGuard(dtype_name(hf))
     exact = True  # s equals G p - h from a fresh convolution (not updated incrementally)
+    reliable = ReliableUpdates(tol)
     winkler, scale, callback = pb.winkler, pb.scale, pb.callback
+
+    def fast(op, sites, values):
+        tb[sites] = values
+        out = op(tb)
+        tb[sites] = 0.0
+        return out
 
     while True:
         if idx.size == 0:  # displacement control lost all contact: restart from overlap
@@ -276,25 +306,26 @@ def _iterate_sparse(p, pb, substrate):
         out = cand[p[cand] == 0]  # interpenetrating sites that carry no pressure
         viol = -float((s[out] + d).min()) if out.size else 0.0
         residual = max(float(np.abs(g_c).max()), viol) / scale
-        if residual <= tol:
-            if exact:
-                converged, message = True, "converged"
-                break
-            s, exact = _subtract_heights(conv(p), hf), True  # confirm without round-off drift
+        if (update := reliable.check(residual, exact)) == "refresh":
+            s, exact = _subtract_heights(conv(p), hf), True
             continue
+        if update == "restart":
+            delta = False
+        if residual <= tol:
+            converged, message = True, "converged"
+            break
         if (stalled := stall(residual)) is not None:
             message = stalled
             break
         if it >= pb.max_iter:
             break
         it += 1
+        reliable.step()
 
         if pb.precondition is None:
             z_c = g_c
         else:
-            tb[idx] = g_c
-            z_c = pb.precondition(tb)[idx]
-            tb[idx] = 0.0
+            z_c = fast(pb.precondition, idx, g_c)[idx].astype(hf.dtype)
             if target is not None:
                 z_c -= z_c.mean()
         g_z = _dot(g_c, z_c)
@@ -302,10 +333,8 @@ def _iterate_sparse(p, pb, substrate):
         if target is not None:
             t_c -= t_c.mean()  # keep the load fixed along the search direction
         g_old = g_z
-        tb[idx] = t_c
-        r = conv(tb)
-        tb[idx] = 0.0
-        r_c = r[idx]
+        r = fast(pb.fast_conv, idx, t_c)
+        r_c = r[idx].astype(hf.dtype)
         denom = _dot(r_c, t_c)
         tau = _dot(g_c, t_c) / denom if denom > 0 else math.nan
         if not math.isfinite(tau):
@@ -314,11 +343,16 @@ def _iterate_sparse(p, pb, substrate):
 
         p_c = p[idx] - tau * t_c
         clipped = p_c <= 0
-        if not clipped.any() and out.size == 0:
+        projected = clipped.any() or out.size > 0
+        if projected:
+            gap_ol = s[out] + d  # I_ol below needs the gaps before the step
+            gap_ol_c = g_c[clipped & (g_c < 0)]
+        r *= tau
+        s -= r  # G(p - tau t) - h = s - tau G t by linearity
+        exact = False
+        if not projected:
             p[idx] = p_c
-            r *= tau
-            s -= r  # exact by linearity: G(p - tau t) - h = s - tau G t
-            exact, delta = False, True
+            delta = True
         else:
             # Polonsky & Keer's projection, then their I_ol: unloaded sites that
             # interpenetrate get pressure back
@@ -327,31 +361,27 @@ def _iterate_sparse(p, pb, substrate):
             p_c[clipped] = 0.0
             p[idx] = p_c
             ol = np.concatenate((out, idx[clipped & (g_c < 0)]))
-            p[ol] -= tau * (s[ol] + d)
+            p[ol] -= tau * np.concatenate((gap_ol, gap_ol_c))
             delta = ol.size == 0
             keep = p[idx] > 0
             t_c = t_c[keep]
             idx = np.concatenate((idx[keep], out[p[out] > 0]))
             correction = p[changed] - linear
-            lam = 1.0
+            # s += G(correction): point responses for a few sites, else a convolution
+            if changed.size <= POINT_CORRECTIONS:
+                kernel.add(s, changed, correction)
+            else:
+                s += fast(pb.fast_conv, changed, correction)
             if target is not None:
                 total = float(p[idx].sum())
                 if not total > 0:  # everything was clipped: restart from uniform pressure
-                    p[:], idx, delta, changed = target / n, np.arange(n), False, np.arange(n)
-                else:
+                    p[:], idx, delta = target / n, np.arange(n), False
+                    s, exact = _subtract_heights(conv(p), hf), True
+                elif total != target:  # back to the load: s = lam (u + G c) - h
                     lam = target / total
                     p[idx] *= lam
-            if changed.size <= POINT_CORRECTIONS:
-                # few sites changed: add their point responses instead of a convolution
-                r *= tau
-                s -= r
-                kernel.add(s, changed, correction)
-                if lam != 1.0:  # s = lam * (u + G c) - h
                     s *= lam
-                    s += (lam - 1.0) * hf
-                exact = False
-            else:
-                s, exact = _subtract_heights(conv(p), hf), True
+                    _axpy(lam - 1.0, hf, s)
         if callback is not None and callback(it, residual):
             message = "stopped by callback"
             break

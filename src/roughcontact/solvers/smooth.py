@@ -32,11 +32,17 @@ cold with the block preconditioner moves the stiff sites alone, and a stiff,
 short-ranged wall then captures their neighbours in a metastable state of higher energy.)
 
 Per iteration the solver needs two FFT convolutions, the preconditioner (Green's
-function on the soft sites, evaluated in single precision: it only steers the search
-direction, and a float32 FFT pair costs a third to a half of a float64 one) and the
-elastic pressure of the preconditioned gradient (in full precision, exactly that of the
-direction taken); with no stiff site (before contact) the second is not needed, because
-then :math:`K K^{-1}` is the identity on the non-uniform modes. The step length is an exact
+function on the soft sites) and the elastic pressure ``K z`` of the preconditioned
+gradient; with no stiff site (before contact) the second is not needed, because then
+:math:`K K^{-1}` is the identity on the non-uniform modes. Both run in single precision
+(a float32 FFT pair costs a third to a half of a float64 one): the preconditioner only
+steers the search direction, and ``K z`` only updates the elastic pressure ``K w``
+incrementally, so its rounding (~1e-7 of the increment) accumulates to ~1e-7 of the
+distance travelled. ``K w`` is recomputed exactly (float64) whenever the residual has
+fallen by :data:`._ops.RELIABLE_DROP` since the last exact evaluation, at the latest
+every :data:`._ops.RELIABLE_EVERY` iterations, and before convergence is declared
+("reliable updates", as in the hard-wall solver), so the answer is that of a float64
+solve. The step length is an exact
 line minimisation, cheap because the elastic energy is quadratic along the line and the
 interaction is local. (With the earlier Green's-function preconditioner, preconditioned
 L-BFGS with the same line search took the same number of iterations as conjugate
@@ -61,11 +67,13 @@ from .._backend import (
 )
 from .._validate import ParameterError
 from ._ops import (
+    ReliableUpdates,
     StallGuard,
     check_problem,
     compliance_operator,
     false_position,
     illinois,
+    in_precision,
     in_single_precision,
     stiffness_operator,
 )
@@ -153,8 +161,9 @@ def minimize_energy(
     xp = array_namespace(h)
     elastic_pressure = stiffness_operator(substrate)
     compliance = compliance_operator(substrate)
-    # the preconditioner's Green's-function block, in single precision (see _precondition)
+    # single precision for what only steers or updates incrementally (module docstring)
     compliance_single = in_single_precision(compliance)
+    elastic_pressure_single = in_precision(elastic_pressure, xp.float32)
     self_stiffness = substrate.self_stiffness
 
     base = offset - xp.reshape(h, (-1,))  # gap = base + w
@@ -177,7 +186,10 @@ def minimize_energy(
         return gr
 
     gap = base + w
-    gr = imbalance(_local(interaction.pressure, interaction.cutoff, gap))
+    p_int = _local(interaction.pressure, interaction.cutoff, gap)
+    gr = imbalance(p_int)
+    exact = True  # kw is K w from a fresh float64 convolution (not updated incrementally)
+    reliable = ReliableUpdates(tol)
     stiff = diagonal = None
     s = ks = z_old = None
     gz_old = 1.0
@@ -188,6 +200,12 @@ def minimize_energy(
         if not math.isfinite(residual):
             message = f"non-finite state at iteration {it} (check inputs and the interaction)"
             break
+        if (update := reliable.check(residual, exact)) == "refresh":
+            kw, exact = elastic_pressure(w), True
+            gr = imbalance(p_int)
+            continue
+        if update == "restart":
+            s = None  # the conjugate directions were built on a drifted gradient
         if residual <= tol:
             converged, message = True, "converged"
             break
@@ -200,11 +218,12 @@ def minimize_energy(
             message = "stopped by callback"
             break
         it += 1
+        reliable.step()
         restart = s is None or it % restart_every == 0
         if it % refresh_every == 0 or (it == 1 and initial is not None):
             stiff, diagonal = _stiff_sites(interaction, gap, self_stiffness)
         z, kz = _precondition(
-            gr, stiff, diagonal, compliance, compliance_single, elastic_pressure, rigid
+            gr, stiff, diagonal, compliance, compliance_single, elastic_pressure_single, rigid
         )
         gz = _dot(gr, z)
         beta = 0.0 if restart else max(0.0, (gz - _dot(gr, z_old)) / gz_old)  # PR+
@@ -226,12 +245,10 @@ def minimize_energy(
             break
         w += alpha * s
         kw += alpha * ks
-        if it % 50 == 0:
-            kw = elastic_pressure(w)  # remove round-off drift of the incremental update
+        exact = False
         gap = base + w
         gr = imbalance(p_int)
 
-    kw = elastic_pressure(w)
     gap = base + w
     p_int = _local(interaction.pressure, interaction.cutoff, gap)
     rep, att = interaction.classify(gap)
@@ -272,15 +289,15 @@ def _precondition(gr, stiff, diagonal, compliance, compliance_single, elastic_pr
 
     ``z = diagonal * gr`` on the stiff sites and ``K^-1 (gr on the other sites)`` there;
     both blocks are symmetric positive definite, so is the preconditioner (restricted
-    to mean-free fields when the uniform mode is rigid).
+    to mean-free fields when the uniform mode is rigid). ``K z`` comes in single
+    precision (``elastic_pressure`` is the single-precision stiffness): it only updates
+    the elastic pressure incrementally (see the module docstring).
     """
     xp = array_namespace(gr)
     if stiff is None:
         # K K^-1 is the identity on the non-uniform modes, and gr has no uniform mode
-        # when it is rigid: no second convolution (which needs K^-1 in full precision)
-        return compliance(gr), gr
-    # the Green's function in single precision: z only steers the search direction, and
-    # its elastic pressure K z below is computed in full precision from z itself
+        # when it is rigid: no second convolution
+        return compliance(gr), xp.astype(gr, xp.float32)
     soft_block = compliance_single(xp.where(stiff, 0.0, gr))
     z = xp.where(stiff, gr * diagonal, soft_block)
     if rigid:
