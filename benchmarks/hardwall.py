@@ -75,17 +75,24 @@ def surface(n: int, seed: int) -> np.ndarray:
 
 
 def fft_pair_seconds(n: int, workers: int, repeats: int = 7) -> float:
-    """Median wall time of one scipy.fft rfft2 + irfft2 pair on an n x n float64 grid."""
+    """Median wall time of one scipy.fft rfft2 + irfft2 pair on an n x n float64 grid.
+
+    The faster of one thread and ``workers`` threads (on small grids starting threads
+    costs more than they save), so that the reference is the best pair this machine does.
+    """
     import scipy.fft
 
     x = np.random.default_rng(0).standard_normal((n, n))
-    scipy.fft.irfft2(scipy.fft.rfft2(x, workers=workers), s=x.shape, workers=workers)
-    times = []
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        scipy.fft.irfft2(scipy.fft.rfft2(x, workers=workers), s=x.shape, workers=workers)
-        times.append(time.perf_counter() - t0)
-    return float(np.median(times))
+    best = np.inf
+    for w in sorted({1, workers}):
+        scipy.fft.irfft2(scipy.fft.rfft2(x, workers=w), s=x.shape, workers=w)
+        times = []
+        for _ in range(repeats):
+            t0 = time.perf_counter()
+            scipy.fft.irfft2(scipy.fft.rfft2(x, workers=w), s=x.shape, workers=w)
+            times.append(time.perf_counter() - t0)
+        best = min(best, float(np.median(times)))
+    return best
 
 
 @contextlib.contextmanager
@@ -315,7 +322,10 @@ def main(argv=None) -> int:
     ap.add_argument("--load", type=float, default=1e-3, help="mean pressure in units of E*")
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument(
-        "--fft-workers", type=int, default=n_cores(), help="threads for the FFT-pair reference"
+        "--fft-workers",
+        type=int,
+        default=n_cores(),
+        help="threads for the FFT-pair reference (the faster of this and one is used)",
     )
     ap.add_argument(
         "--plain", action="store_true", help="also time roughcontact without its preconditioner"

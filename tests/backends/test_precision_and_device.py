@@ -96,3 +96,19 @@ def test_cuda_without_a_gpu_is_a_clear_error():
         pass
     with pytest.raises(rc.ParameterError, match="device='cuda'"):
         rc.solve(H, SUB, rc.HardWall(), load=1e-3, device="cuda")
+
+
+def test_fft_threads_only_on_large_grids(monkeypatch):
+    # starting threads costs more than they save on small grids (see THREADED_FFT_MIN_SIZE)
+    from roughcontact import _backend
+
+    monkeypatch.delenv("ROUGHCONTACT_FFT_WORKERS", raising=False)
+    cores = _backend.default_workers()
+    assert cores >= 1
+    assert _backend.default_workers(256 * 256) == 1
+    assert _backend.default_workers(_backend.THREADED_FFT_MIN_SIZE) == cores
+    monkeypatch.setenv("ROUGHCONTACT_FFT_WORKERS", "3")
+    assert _backend.default_workers(256 * 256) == 3
+    # whatever the threads, the same transform
+    x = np.random.default_rng(0).standard_normal((64, 48))
+    np.testing.assert_allclose(_backend.irfft2(_backend.rfft2(x), x.shape), x, atol=1e-12)
