@@ -73,7 +73,6 @@ from ._ops import (
     compliance_operator,
     false_position,
     illinois,
-    in_precision,
     in_single_precision,
     stiffness_operator,
 )
@@ -163,7 +162,7 @@ def minimize_energy(
     compliance = compliance_operator(substrate)
     # single precision for what only steers or updates incrementally (module docstring)
     compliance_single = in_single_precision(compliance)
-    elastic_pressure_single = in_precision(elastic_pressure, xp.float32)
+    elastic_pressure_single = in_single_precision(elastic_pressure)
     self_stiffness = substrate.self_stiffness
 
     base = offset - xp.reshape(h, (-1,))  # gap = base + w
@@ -289,7 +288,7 @@ def _precondition(gr, stiff, diagonal, compliance, compliance_single, elastic_pr
 
     ``z = diagonal * gr`` on the stiff sites and ``K^-1 (gr on the other sites)`` there;
     both blocks are symmetric positive definite, so is the preconditioner (restricted
-    to mean-free fields when the uniform mode is rigid). ``K z`` comes in single
+    to mean-free fields when the uniform mode is rigid). ``K z`` is computed in single
     precision (``elastic_pressure`` is the single-precision stiffness): it only updates
     the elastic pressure incrementally (see the module docstring).
     """
@@ -297,7 +296,7 @@ def _precondition(gr, stiff, diagonal, compliance, compliance_single, elastic_pr
     if stiff is None:
         # K K^-1 is the identity on the non-uniform modes, and gr has no uniform mode
         # when it is rigid: no second convolution
-        return compliance(gr), xp.astype(gr, xp.float32)
+        return compliance(gr), gr
     soft_block = compliance_single(xp.where(stiff, 0.0, gr))
     z = xp.where(stiff, gr * diagonal, soft_block)
     if rigid:
