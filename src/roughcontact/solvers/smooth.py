@@ -38,12 +38,11 @@ gradient; with no stiff site (before contact) the second is not needed, because 
 (a float32 FFT pair costs a third to a half of a float64 one): the preconditioner only
 steers the search direction, and ``K z`` only updates the elastic pressure ``K w``
 incrementally, so its rounding (~1e-7 of the increment) accumulates to ~1e-7 of the
-distance travelled. ``K w`` is recomputed exactly (float64) whenever the residual has
-fallen by :data:`._ops.RELIABLE_DROP` since the last exact evaluation, at the latest
-every :data:`._ops.RELIABLE_EVERY` iterations, and before convergence is declared
-("reliable updates", as in the hard-wall solver), so the answer is that of a float64
-solve. The step length is an exact
-line minimisation, cheap because the elastic energy is quadratic along the line and the
+distance travelled. ``K w`` is recomputed exactly (float64) when
+:class:`._ops.ReliableUpdates` says (the residual fell 1000-fold since the last exact
+evaluation, 50 iterations passed, or the tolerance is met), so the answer is that of a
+float64 solve (tested down to tol 1e-12). The step length is an exact line
+minimisation, cheap because the elastic energy is quadratic along the line and the
 interaction is local. (With the earlier Green's-function preconditioner, preconditioned
 L-BFGS with the same line search took the same number of iterations as conjugate
 gradients.)
