@@ -23,7 +23,11 @@ and of the bounded CG of Bugnicourt et al. (Tribol. Lett. 66, 29 (2018)):
 
 Convergence measure (``residual``): the largest force imbalance on a free site,
 ``max |K w - p_int(g) - μ| / E*``; sites on the active face satisfy the contact
-conditions by construction. Cost: two FFT pairs per iteration, three on projected steps.
+conditions by construction. Cost: two FFT convolutions per iteration, the
+preconditioner and ``K s`` (both in float32: the first only steers, the second only
+updates ``K w`` by increments, which is recomputed exactly in float64 as the residual
+falls and before convergence is declared, as in :mod:`.smooth`), and a float64 one on
+projected steps (their energy test needs the exact ``K w``).
 
 The result's ``pressure`` is the surface traction: the interaction pressure on free
 sites, the elastic pressure (reaction plus adhesion) on the wall. Repulsive sites are
@@ -44,10 +48,12 @@ from .._backend import (
 )
 from .._validate import ParameterError
 from ._ops import (
+    ReliableUpdates,
     StallGuard,
     check_hard_wall_offset,
     check_problem,
     compliance_operator,
+    in_single_precision,
     stiffness_operator,
     total,
 )
@@ -143,8 +149,11 @@ def minimize_energy_bounded(
     base = offset - hf  # gap = base + w
     lower = -base
     check_hard_wall_offset(h, substrate, offset)
-    green = compliance_operator(substrate)
+    # single precision for what only steers (the preconditioner) or updates K w by
+    # increments (K s); exact float64 K w on projected steps and as ReliableUpdates says
+    green = in_single_precision(compliance_operator(substrate))
     stiff = stiffness_operator(substrate)
+    stiff_single = in_single_precision(stiff)
     scale = float(xp.std(hf)) or substrate.pixel_size
     on_wall_tol = 1e-12 * scale
 
@@ -168,6 +177,7 @@ def minimize_energy_bounded(
     gz_old, active_old = 1.0, None
     converged, message, residual, it, mu = False, "iteration cap reached", math.inf, 0, 0.0
     stall = StallGuard(dtype_name(h))
+    reliable, exact = ReliableUpdates(tol), True  # exact: kw is K w from a fresh convolution
     free = xp.ones(n, dtype=xp.bool, device=array_device(h))
     while True:
         gap = base + w
@@ -186,6 +196,12 @@ def minimize_energy_bounded(
         if not math.isfinite(residual):
             message = f"non-finite state at iteration {it} (check inputs and the interaction)"
             break
+        if (update := reliable.check(residual, exact)) == "refresh":
+            kw, exact = stiff(w), True
+            e_cur = energy(w, kw)
+            continue
+        if update == "restart":
+            s = None  # the conjugate directions were built on a drifted gradient
         if residual <= tol or not xp.any(free):
             converged, message = True, "converged"
             break
@@ -198,6 +214,7 @@ def minimize_energy_bounded(
             message = "stopped by callback"
             break
         it += 1
+        reliable.step()
         z = xp.where(free, green(rr), 0.0)
         if rigid:
             z = xp.where(free, z - xp.mean(z[free]), 0.0)
@@ -214,7 +231,7 @@ def minimize_energy_bounded(
         if slope0 >= 0:
             s, slope0 = -z, -gz
         z_old, gz_old, active_old = z, gz, active
-        ks = stiff(s)
+        ks = stiff_single(s)
         alpha = _line_minimum(interaction, gap, s, kw, ks, slope0)
         if not math.isfinite(alpha):
             message = f"line search failed at iteration {it}"
@@ -225,8 +242,7 @@ def minimize_energy_bounded(
             w += alpha * s
             kw += alpha * ks
             e_cur = energy(w, kw)
-            if it % 50 == 0:
-                kw = stiff(w)  # remove round-off drift of the incremental update
+            exact = False
             continue
         # the step crosses the wall: project it, halve it while it does not lower E
         for _ in range(6):
@@ -243,7 +259,7 @@ def minimize_energy_bounded(
             w_try = xp.maximum(w + alpha_max * s, lower)  # largest feasible step
             kw_try = stiff(w_try)
             e_try = energy(w_try, kw_try)
-        w, kw, e_cur = w_try, kw_try, e_try
+        w, kw, e_cur, exact = w_try, kw_try, e_try, True
         s = None  # the face changed: restart the conjugate directions
 
     gap = base + w
