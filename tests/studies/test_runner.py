@@ -193,3 +193,21 @@ def test_device_is_checked_before_work_and_float32_is_recorded(tmp_path, make_st
     with xr.open_dataset(sorted(out.glob("task-*.nc"))[0], engine="h5netcdf") as ds:
         assert ds.attrs["solver_dtype"] == "float32" and ds.attrs["dtype"] == "float32"
         assert ds.attrs["device"] == "cpu"
+
+
+def test_own_cluster_keeps_glibc_malloc_defaults(monkeypatch):
+    # Dask's workers get MALLOC_TRIM_THRESHOLD_=65536, which turns off glibc's adaptive
+    # mmap threshold (every large array mmapped and unmapped: most of the demo's time went
+    # to the kernel); the cluster we start leaves it unset, an explicit setting still wins
+    from roughcontact.studies import cluster
+
+    monkeypatch.delenv("MALLOC_TRIM_THRESHOLD_", raising=False)
+    client, own = cluster.connect(None, 1)
+    try:
+        env = client.run(lambda: os.environ.get("MALLOC_TRIM_THRESHOLD_"))
+        assert list(env.values()) == [None]
+        threads = client.run(lambda: os.environ.get("OPENBLAS_NUM_THREADS"))
+        assert list(threads.values()) == ["1"]  # Dask's other settings are kept
+    finally:
+        client.close()
+        own.close()
