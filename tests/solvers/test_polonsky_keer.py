@@ -214,3 +214,42 @@ def test_single_precision_convolutions_reach_float64_accuracy(control, periodic_
     hrms = h.std()
     assert np.abs(gap[res.pressure > 0]).max() <= 2e-12 * hrms
     assert gap.min() >= -2e-12 * hrms
+
+
+@pytest.mark.parametrize("thickness", [None, 20.0], ids=["half-space", "incompressible-layer"])
+@pytest.mark.parametrize("depth", [2.0, 2.5, 3.0])
+def test_displacement_control_with_large_contact_converges(depth, thickness):
+    # deep offsets (a third to all of the surface in contact) on substrates with a rigid
+    # uniform mode: the preconditioned steps once stalled here (the gap's mean never
+    # entered the direction) or cycled through restarts until the iteration cap
+    from roughcontact.solvers import polonsky_keer
+
+    h = rc.self_affine((64, 64), hurst=0.8, rms_slope=0.1, short_cutoff=4, seed=1)
+    sub = rc.Substrate((64, 64), thickness=thickness, poisson=0.5)
+    offset = max(float(h.max() - depth * h.std()), 0.02 * float(h.std()))
+    res = rc.solve(h, sub, offset=offset, tol=1e-10)
+    assert res.converged and res.iterations < 100
+    # Signorini conditions against an independent deflection of the returned pressure
+    gap = offset - h + sub.deflection(res.pressure)
+    hrms = h.std()
+    assert res.pressure.min() >= 0 and 0.1 < res.repulsive_area < 1.0
+    assert np.abs(gap[res.pressure > 0]).max() <= 2e-10 * hrms
+    assert gap.min() >= -2e-10 * hrms
+    # the plain method finds the same state
+    plain = polonsky_keer(h, sub, offset=offset, tol=1e-10, precondition=False)
+    np.testing.assert_allclose(res.pressure, plain.pressure, atol=1e-8 * plain.pressure.max())
+
+
+@pytest.mark.parametrize("control", ["load", "offset"])
+def test_steps_do_not_depend_on_the_units(control):
+    # every step scales with E* (pressures) and a0 (lengths): the same iterations in
+    # other units, the same solution scaled
+    h = rc.self_affine((64, 64), hurst=0.8, rms_slope=0.1, short_cutoff=4, seed=2)
+    kw = {"load": 2e-2} if control == "load" else {"offset": float(h.max() - 2.0 * h.std())}
+    ref = rc.solve(h, rc.Substrate((64, 64)), tol=1e-10, **kw)
+    es, a0 = 1e3, 1e-2  # heights scale with a0, pressures with E*
+    scaled = {k: v * (es if k == "load" else a0) for k, v in kw.items()}
+    sub = rc.Substrate((64, 64), contact_modulus=es, pixel_size=a0)
+    got = rc.solve(h * a0, sub, tol=1e-10, **scaled)
+    assert got.converged and abs(got.iterations - ref.iterations) <= 1
+    np.testing.assert_allclose(got.pressure / es, ref.pressure, atol=1e-9 * ref.pressure.max())

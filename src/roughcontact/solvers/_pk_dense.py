@@ -53,6 +53,7 @@ def iterate_dense(p, pb):
     c = p > 0
     t = kernel = None
     delta, g_old, exact = False, 1.0, True
+    pre = pb.precondition is not None  # whether the steps are preconditioned
     reliable = ReliableUpdates(pb.tol)
 
     def fast(op, x):  # op in fast precision, the result back in the heights' precision
@@ -68,7 +69,7 @@ def iterate_dense(p, pb):
                 residual, converged, message = 0.0, True, "no contact"
                 break
             p = xp.where(overlap, -(s + offset) * pb.winkler, zero)
-            s, c, exact, delta = conv(p) - hf, overlap, True, False
+            s, c, exact, delta, pre = conv(p) - hf, overlap, True, False, False
             continue
         d = -total(xp.where(c, s, zero)) / n_c if target is not None else offset
         gap = s + d
@@ -96,12 +97,23 @@ def iterate_dense(p, pb):
         it += 1
         reliable.step()
 
-        if pb.precondition is None:
+        if pre and any_out:  # the interpenetrating sites join the step
+            c = c | out
+            n_c, g, out, any_out, delta = (
+                _count(xp, c),
+                xp.where(c, gap, zero),
+                c & ~c,
+                False,
+                False,
+            )
+        if not pre:
             z = g
         else:
             z = xp.where(c, fast(pb.precondition, g), zero)
             if target is not None:
                 z = xp.where(c, z - total(z) / n_c, zero)
+            elif pb.rigid_mean:
+                z = xp.where(c, z + pb.site_stiffness * total(g) / g.shape[0], zero)
         g_z = dot(g, z)
         t = z + (g_z / g_old) * t if delta else z
         if target is not None:  # keep the load fixed along the search direction
@@ -121,7 +133,7 @@ def iterate_dense(p, pb):
             exact, delta = False, True
         else:
             # projection, then I_ol: unloaded interpenetrating sites get pressure back
-            ol = out | (clipped & (g < 0))
+            ol = out | (clipped & (g < 0)) if not pre else out
             p = xp.where(ol, -tau * gap, xp.where(clipped, zero, p_new))
             delta = not bool(xp.any(ol))
             c = p > 0
@@ -140,7 +152,7 @@ def iterate_dense(p, pb):
             if target is not None:
                 p_sum = total(p)
                 if not p_sum > 0:  # everything was clipped: restart from uniform pressure
-                    p, delta = xp.full_like(p, target / p.shape[0]), False
+                    p, delta, pre = xp.full_like(p, target / p.shape[0]), False, False
                     c = xp.ones_like(c)
                     s, exact = conv(p) - hf, True
                 elif p_sum != target:  # back to the load: s = lam (u + G c) - h

@@ -22,8 +22,21 @@ substrate's stiffness, the inverse of ``G`` on the whole grid, ``P_c`` the restr
 Vollebregt (J. Comput. Phys. 257, 333 (2014)). The condition number of ``G`` on a contact
 patch of radius ``R`` grows like ``R`` (its uniform mode is soft, its pixel modes stiff);
 ``P_c K P_c`` inverts it up to boundary effects, so the iteration count grows far less
-with the grid (SPEC §5 surface at 1e-3 E*: 96 → 43 iterations at 1024², 329 → 88 at
-2048²; ``benchmarks/hardwall.py``).
+with the grid (SPEC §5 surface at 1e-3 E*: 96 → 41 iterations at 1024², 329 → 82 at
+2048²; ``benchmarks/hardwall.py``). Three details make the preconditioned steps as
+robust as the plain ones (without them, displacement control with a large contact set
+could stall or cycle until the iteration cap):
+
+* With a rigid uniform mode ``K`` has none (its stiffness is infinite, stored as zero),
+  so under displacement control the gap's mean on ``c``, which only a change of the
+  contact set can remove, would barely enter ``z``; the preconditioner gives that mode
+  the sites' self-stiffness :math:`K_{ii}`, ``z += K_ii (1^T P_c g) / n``.
+* Polonsky & Keer's I_ol rule gives an unloaded interpenetrating site the pressure
+  ``-tau g`` of a plain step; with preconditioned steps these sites instead join the
+  set the step acts on, so their pressure comes from ``z`` and the line minimisation
+  (a site-local pressure overshoots when a whole region interpenetrates).
+* If a preconditioned step ever clips every loaded site (all contact lost), the solve
+  goes on with plain steps, so that the restart cannot repeat the same path.
 
 Cost per iteration: one FFT convolution for the step (``G`` of the search direction),
 one for the preconditioner, and a third only on iterations where the projection changed
@@ -55,59 +68,26 @@ import math
 import time
 from dataclasses import dataclass
 
-import numpy as np
-
 from .._backend import (
     array_device,
     array_namespace,
     computes_on_heights_device,
-    dtype_name,
     is_numpy_array,
     to_numpy,
 )
 from .._validate import ParameterError
 from ._ops import (
-    POINT_CORRECTIONS,
-    ReliableUpdates,
-    StallGuard,
     check_hard_wall_offset,
     check_problem,
     compliance_operator,
     in_precision,
     stiffness_operator,
 )
-from ._ops import dot as _dot
 from ._pk_dense import iterate_dense
+from ._pk_sparse import iterate_sparse
 from .observables import make_result
 
 __all__ = ["polonsky_keer"]
-
-
-def _subtract_heights(u, hf):
-    np.subtract(u, hf, out=u)
-    return u
-
-
-class _PointKernel:
-    """Response of the substrate to unit point forces, added in real space."""
-
-    def __init__(self, substrate, conv, dtype):
-        n = substrate.shape[0] * substrate.shape[1]
-        unit = np.zeros(n, dtype=dtype)
-        unit[0] = 1.0
-        self.g0 = conv(unit).reshape(substrate.shape)
-        self.shape = substrate.shape
-
-    def add(self, s_flat, sites, coeffs):
-        """s += sum_j coeffs[j] * G(x - x_j), periodic."""
-        nx, ny = self.shape
-        s2, g0 = s_flat.reshape(self.shape), self.g0
-        for site, c in zip(sites.tolist(), coeffs.tolist(), strict=True):
-            i, j = divmod(site, ny)
-            s2[i:, j:] += c * g0[: nx - i, : ny - j]
-            s2[i:, :j] += c * g0[: nx - i, ny - j :]
-            s2[:i, j:] += c * g0[nx - i :, : ny - j]
-            s2[:i, :j] += c * g0[nx - i :, ny - j :]
 
 
 def _initial_pressure(initial, heights, substrate, load, offset):
@@ -223,12 +203,14 @@ def polonsky_keer(
         scale=float(xp.std(hf)) or substrate.pixel_size,
         winkler=0.5 * substrate.contact_modulus / substrate.pixel_size,
         precondition=in_precision(stiffness_operator(substrate), fast) if precondition else None,
+        site_stiffness=substrate.self_stiffness,
+        rigid_mean=substrate.rigid_mean,
         tol=tol,
         max_iter=max_iter,
         callback=callback,
     )
     if is_numpy_array(h):
-        p, it, residual, converged, message = _iterate_sparse(p, problem, substrate)
+        p, it, residual, converged, message = iterate_sparse(p, problem, substrate)
     else:
         p, it, residual, converged, message = iterate_dense(p, problem)
     u = conv(p)
@@ -254,132 +236,8 @@ class _Problem:
     scale: float  # residual normalisation (length)
     winkler: float  # local stiffness for restarts from overlap (pressure/length)
     precondition: object  # g -> K g (the stiffness) in fast_dtype, or None (plain)
+    site_stiffness: float  # K_ii (pressure/length): I_ol and the uniform mode, preconditioned
+    rigid_mean: bool  # the substrate's uniform mode is rigid (K has none)
     tol: float
     max_iter: int
     callback: object
-
-
-def _iterate_sparse(p, pb, substrate):
-    """Polonsky-Keer iterations on index arrays of the contact set (NumPy)."""
-    hf, conv, target, offset, tol = pb.hf, pb.conv, pb.target, pb.offset, pb.tol
-    n = hf.size
-    kernel = _PointKernel(substrate, conv, hf.dtype)
-    s = _subtract_heights(conv(p), hf)  # s = u - h, so that the gap is s + d
-    idx = np.flatnonzero(p > 0)
-    # full-grid buffer for what is convolved in fast precision (zero off the sites used)
-    tb = np.zeros(n, dtype=pb.fast_dtype)
-    work = np.empty_like(hf)  # full-grid scratch in the heights' precision
-    t_c = None
-    delta, g_old = False, 1.0
-    converged, message, residual, it = False, "iteration cap reached", math.inf, 0
-    stall = StallGuard(dtype_name(hf))
-    exact = True  # s equals G p - h from a fresh convolution (not updated incrementally)
-    reliable = ReliableUpdates(tol)
-    winkler, scale, callback = pb.winkler, pb.scale, pb.callback
-
-    def fast(op, sites, values):
-        tb[sites] = values
-        out = op(tb)
-        tb[sites] = 0.0
-        return out
-
-    while True:
-        if idx.size == 0:  # displacement control lost all contact: restart from overlap
-            ov = np.flatnonzero(s < -offset)
-            if ov.size == 0:
-                residual, converged, message = 0.0, True, "no contact"
-                break
-            p[ov] = -(s[ov] + offset) * winkler
-            s, idx, exact, delta = _subtract_heights(conv(p), hf), ov, True, False
-            continue
-        s_c = s[idx]
-        d = -float(s_c.mean()) if target is not None else offset
-        g_c = s_c + d
-        cand = np.flatnonzero(s < -d)
-        out = cand[p[cand] == 0]  # interpenetrating sites that carry no pressure
-        viol = -float((s[out] + d).min()) if out.size else 0.0
-        residual = max(float(np.abs(g_c).max()), viol) / scale
-        if (update := reliable.check(residual, exact)) == "refresh":
-            s, exact = _subtract_heights(conv(p), hf), True
-            continue
-        if update == "restart":
-            delta = False
-        if residual <= tol:
-            converged, message = True, "converged"
-            break
-        if (stalled := stall(residual)) is not None:
-            message = stalled
-            break
-        if it >= pb.max_iter:
-            break
-        it += 1
-        reliable.step()
-
-        if pb.precondition is None:
-            z_c = g_c
-        else:
-            z_c = fast(pb.precondition, idx, g_c)[idx].astype(hf.dtype)
-            if target is not None:
-                z_c -= z_c.mean()
-        g_z = _dot(g_c, z_c)
-        t_c = z_c + (g_z / g_old) * t_c if delta else z_c.copy()
-        if target is not None:
-            t_c -= t_c.mean()  # keep the load fixed along the search direction
-        g_old = g_z
-        r = fast(pb.fast_conv, idx, t_c)
-        r_c = r[idx].astype(hf.dtype)
-        denom = _dot(r_c, t_c)
-        tau = _dot(g_c, t_c) / denom if denom > 0 else math.nan
-        if not math.isfinite(tau):
-            message = f"breakdown at iteration {it}: non-finite step (check the inputs)"
-            break
-
-        p_c = p[idx] - tau * t_c
-        clipped = p_c <= 0
-        projected = clipped.any() or out.size > 0
-        if projected:
-            gap_ol = s[out] + d  # I_ol below needs the gaps before the step
-            gap_ol_c = g_c[clipped & (g_c < 0)]
-        r *= tau
-        s -= r  # G(p - tau t) - h = s - tau G t by linearity
-        exact = False
-        if not projected:
-            p[idx] = p_c
-            delta = True
-        else:
-            # Polonsky & Keer's projection, then their I_ol: unloaded sites that
-            # interpenetrate get pressure back
-            changed = np.concatenate((idx[clipped], out))  # where p differs from p - tau t
-            linear = np.concatenate((p_c[clipped], np.zeros(out.size)))
-            p_c[clipped] = 0.0
-            p[idx] = p_c
-            ol = np.concatenate((out, idx[clipped & (g_c < 0)]))
-            p[ol] -= tau * np.concatenate((gap_ol, gap_ol_c))
-            delta = ol.size == 0
-            keep = p[idx] > 0
-            t_c = t_c[keep]
-            idx = np.concatenate((idx[keep], out[p[out] > 0]))
-            correction = p[changed] - linear
-            # s += G(correction): point responses for a few sites, else a convolution
-            if changed.size <= POINT_CORRECTIONS:
-                kernel.add(s, changed, correction)
-            else:
-                s += fast(pb.fast_conv, changed, correction)
-            if target is not None:
-                total = float(p[idx].sum())
-                if not total > 0:  # everything was clipped: restart from uniform pressure
-                    p[:], idx, delta = target / n, np.arange(n), False
-                    s, exact = _subtract_heights(conv(p), hf), True
-                elif total != target:  # back to the load: s = lam (u + G c) - h
-                    lam = target / total
-                    p[idx] *= lam
-                    s *= lam
-                    s += np.multiply(hf, lam - 1.0, out=work)
-        if callback is not None and callback(it, residual):
-            message = "stopped by callback"
-            break
-        if not math.isfinite(float(p[idx].sum())):
-            message = f"non-finite pressure at iteration {it}"
-            break
-
-    return p, it, residual, converged, message
