@@ -1,8 +1,8 @@
 """Polonsky-Keer iterations on full-grid masks, for any array-API backend (CuPy on a GPU).
 
-The same steps as the index-array loop in :mod:`.polonsky_keer` (see there for the
-method and the residual), written with ``where``-masks because the array API has no
-integer-array assignment. Every pass is over the whole grid, which a GPU does at memory
+The same steps as the index-array loop in :mod:`._pk_sparse` (see :mod:`.polonsky_keer`
+for the method and the residual), written with ``where``-masks because the array API has
+no integer-array assignment. Every pass is over the whole grid, which a GPU does at memory
 bandwidth; per iteration only scalars (step length, norms, flags, and the few sites of a
 point correction) go to the host. Tested to take exactly the steps of the NumPy loop.
 """
@@ -42,7 +42,7 @@ class _RollKernel:
 
 
 def iterate_dense(p, pb):
-    """Iterate from pressure ``p`` on the problem ``pb``; see ``polonsky_keer._iterate_sparse``.
+    """Iterate from pressure ``p`` on the problem ``pb``; see :func:`._pk_sparse.iterate_sparse`.
 
     Returns ``(p, iterations, residual, converged, message)``.
     """
