@@ -121,6 +121,21 @@ def test_hard_wall_dense_loop_takes_the_same_steps(control, thickness):
     assert warm.converged and warm.iterations <= 2
 
 
+@pytest.mark.parametrize("thickness", [None, 10.0])
+def test_hard_wall_dense_loop_same_steps_with_large_contact(thickness):
+    # displacement control with most of the surface in contact: interpenetrating sites
+    # join the preconditioned step and the rigid uniform mode gets its stiffness, in both
+    # loops alike
+    h = rc.self_affine((48, 40), hurst=0.7, rms_slope=0.2, short_cutoff=4, seed=5)
+    sub = rc.Substrate((48, 40), thickness=thickness, poisson=0.5)
+    offset = float(h.max()) - 2.5 * float(h.std())
+    ref = rc.solve(h, sub, rc.HardWall(), offset=offset, tol=1e-10)
+    got = rc.solve(strict(h), sub, rc.HardWall(), offset=offset, tol=1e-10)
+    assert ref.converged and got.converged and ref.repulsive_area > 0.2
+    assert got.iterations == ref.iterations
+    np.testing.assert_allclose(got.pressure, ref.pressure, rtol=1e-9, atol=1e-12 * ref.load)
+
+
 @pytest.mark.parametrize("control", [{"load": 2e-3}, {"offset": None}], ids=["load", "offset"])
 def test_plain_hard_wall_dense_loop_takes_the_same_steps(control):
     from roughcontact.solvers import polonsky_keer

@@ -97,15 +97,9 @@ def iterate_dense(p, pb):
         it += 1
         reliable.step()
 
-        if pre and any_out:  # the interpenetrating sites join the step
-            c = c | out
-            n_c, g, out, any_out, delta = (
-                _count(xp, c),
-                xp.where(c, gap, zero),
-                c & ~c,
-                False,
-                False,
-            )
+        if pre and any_out:  # the interpenetrating sites join the step (see _pk_sparse)
+            c, out, any_out, delta = c | out, c & ~c, False, False
+            n_c, g = _count(xp, c), xp.where(c, gap, zero)
         if not pre:
             z = g
         else:
