@@ -26,6 +26,7 @@ __all__ = [
     "in_single_precision",
     "lowest_hard_wall_offset",
     "stiffness_operator",
+    "stopping",
     "total",
 ]
 
@@ -235,6 +236,20 @@ class StallGuard:
             f"stalled at residual {self.best:.2g} for {self.patience} iterations: the float32 "
             "rounding floor (use dtype='float64' or a larger tol)"
         )
+
+
+def stopping(done: bool, residual: float, stall, it: int, max_iter: int):
+    """Why an iteration loop stops here: ``(converged, message)``, or None to go on.
+
+    ``done``: the convergence test passed; ``stall``: the loop's :class:`StallGuard`.
+    """
+    if done:
+        return True, "converged"
+    if (stalled := stall(residual)) is not None:
+        return False, stalled
+    if it >= max_iter:
+        return False, "iteration cap reached"
+    return None
 
 
 def lowest_hard_wall_offset(heights, substrate) -> float:

@@ -12,7 +12,7 @@ from __future__ import annotations
 import math
 
 from .._backend import array_device, array_namespace, dtype_name, to_numpy
-from ._ops import POINT_CORRECTIONS, ReliableUpdates, StallGuard, dot, total
+from ._ops import POINT_CORRECTIONS, ReliableUpdates, StallGuard, dot, stopping, total
 
 
 def _count(xp, mask) -> int:
@@ -86,13 +86,8 @@ def iterate_dense(p, pb):
             continue
         if update == "restart":
             delta = False
-        if residual <= pb.tol:
-            converged, message = True, "converged"
-            break
-        if (stalled := stall(residual)) is not None:
-            message = stalled
-            break
-        if it >= pb.max_iter:
+        if (end := stopping(residual <= pb.tol, residual, stall, it, pb.max_iter)) is not None:
+            converged, message = end
             break
         it += 1
         reliable.step()

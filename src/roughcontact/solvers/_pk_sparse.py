@@ -12,7 +12,7 @@ import math
 import numpy as np
 
 from .._backend import dtype_name
-from ._ops import POINT_CORRECTIONS, ReliableUpdates, StallGuard
+from ._ops import POINT_CORRECTIONS, ReliableUpdates, StallGuard, stopping
 from ._ops import dot as _dot
 
 __all__ = ["iterate_sparse"]
@@ -97,13 +97,8 @@ def iterate_sparse(p, pb, substrate):
             continue
         if update == "restart":
             delta = False
-        if residual <= tol:
-            converged, message = True, "converged"
-            break
-        if (stalled := stall(residual)) is not None:
-            message = stalled
-            break
-        if it >= pb.max_iter:
+        if (end := stopping(residual <= tol, residual, stall, it, pb.max_iter)) is not None:
+            converged, message = end
             break
         it += 1
         reliable.step()

@@ -55,6 +55,7 @@ from ._ops import (
     compliance_operator,
     in_single_precision,
     stiffness_operator,
+    stopping,
     total,
 )
 from ._ops import dot as _dot
@@ -202,13 +203,9 @@ def minimize_energy_bounded(
             continue
         if update == "restart":
             s = None  # the conjugate directions were built on a drifted gradient
-        if residual <= tol or not xp.any(free):
-            converged, message = True, "converged"
-            break
-        if (stalled := stall(residual)) is not None:
-            message = stalled
-            break
-        if it >= max_iter:
+        done = residual <= tol or not bool(xp.any(free))
+        if (end := stopping(done, residual, stall, it, max_iter)) is not None:
+            converged, message = end
             break
         if callback is not None and it > 0 and callback(it, residual):
             message = "stopped by callback"

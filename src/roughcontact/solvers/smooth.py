@@ -74,6 +74,7 @@ from ._ops import (
     illinois,
     in_single_precision,
     stiffness_operator,
+    stopping,
 )
 from ._ops import dot as _dot
 from .observables import make_result
@@ -204,13 +205,8 @@ def minimize_energy(
             continue
         if update == "restart":
             s = None  # the conjugate directions were built on a drifted gradient
-        if residual <= tol:
-            converged, message = True, "converged"
-            break
-        if (stalled := stall(residual)) is not None:
-            message = stalled
-            break
-        if it >= max_iter:
+        if (end := stopping(residual <= tol, residual, stall, it, max_iter)) is not None:
+            converged, message = end
             break
         if callback is not None and it > 0 and callback(it, residual):
             message = "stopped by callback"
