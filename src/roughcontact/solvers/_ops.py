@@ -57,7 +57,7 @@ def in_single_precision(operator):
     """The linear operator ``operator`` evaluated in float32, its result in the input's dtype.
 
     For preconditioners only: a preconditioner need not be exact, and a float32 FFT pair
-    costs a third to a half of a float64 one (scipy.fft, 256²-1024²). Its rounding
+    costs 0.4-0.7 of a float64 one (scipy.fft, 256²-2048²). Its rounding
     (~1e-7 relative to the result) perturbs search directions, never a residual.
     """
 

@@ -46,7 +46,7 @@ False`` gives the plain method (one convolution fewer per iteration, many more
 iterations on large grids).
 
 Mixed precision: all of these convolutions run in single precision (a float32 FFT pair
-costs a third to a half of a float64 one), with "reliable updates" (Sleijpen & van der
+costs 0.4-0.7 of a float64 one), with "reliable updates" (Sleijpen & van der
 Vorst, Computing 56, 141 (1996)). The step and correction convolutions only ever update
 ``G p - h`` incrementally, so their rounding (~1e-7 of the increment) accumulates to
 ~1e-7 of the distance travelled since the last exact evaluation. That evaluation, one

@@ -35,7 +35,7 @@ Per iteration the solver needs two FFT convolutions, the preconditioner (Green's
 function on the soft sites) and the elastic pressure ``K z`` of the preconditioned
 gradient; with no stiff site (before contact) the second is not needed, because then
 :math:`K K^{-1}` is the identity on the non-uniform modes. Both run in single precision
-(a float32 FFT pair costs a third to a half of a float64 one): the preconditioner only
+(a float32 convolution costs 0.4-0.7 of a float64 one): the preconditioner only
 steers the search direction, and ``K z`` only updates the elastic pressure ``K w``
 incrementally, so its rounding (~1e-7 of the increment) accumulates to ~1e-7 of the
 distance travelled. ``K w`` is recomputed exactly (float64) when
