@@ -253,3 +253,19 @@ def test_steps_do_not_depend_on_the_units(control):
     got = rc.solve(h * a0, sub, tol=1e-10, **scaled)
     assert got.converged and abs(got.iterations - ref.iterations) <= 1
     np.testing.assert_allclose(got.pressure / es, ref.pressure, atol=1e-9 * ref.pressure.max())
+
+
+def test_few_joining_sites_keep_the_conjugate_directions(monkeypatch):
+    # restarting the directions whenever a site or two interpenetrate and join the step
+    # made the late iterations steepest descent; keeping them (the new sites start with
+    # no direction) reaches the same solution in fewer iterations
+    from roughcontact.solvers import _pk_sparse
+
+    h = rc.self_affine((256, 256), hurst=0.8, rms_slope=0.1, short_cutoff=8, seed=1)
+    sub = rc.Substrate((256, 256))
+    kept = rc.solve(h, sub, load=1e-2, tol=1e-10)
+    monkeypatch.setattr(_pk_sparse, "JOINING_KEEPS_DIRECTIONS", 0.0)
+    restarted = rc.solve(h, sub, load=1e-2, tol=1e-10)
+    assert kept.converged and restarted.converged
+    assert kept.iterations <= restarted.iterations - 3
+    np.testing.assert_allclose(kept.pressure, restarted.pressure, atol=1e-8 * kept.pressure.max())

@@ -12,7 +12,15 @@ from __future__ import annotations
 import math
 
 from .._backend import array_device, array_namespace, dtype_name, to_numpy
-from ._ops import POINT_CORRECTIONS, ReliableUpdates, StallGuard, dot, stopping, total
+from ._ops import (
+    JOINING_KEEPS_DIRECTIONS,
+    POINT_CORRECTIONS,
+    ReliableUpdates,
+    StallGuard,
+    dot,
+    stopping,
+    total,
+)
 
 
 def _count(xp, mask) -> int:
@@ -93,8 +101,10 @@ def iterate_dense(p, pb):
         reliable.step()
 
         if pre and any_out:  # the interpenetrating sites join the step (see _pk_sparse)
-            c, out, any_out, delta = c | out, c & ~c, False, False
+            n_out = _count(xp, out)
+            c, out, any_out = c | out, c & ~c, False
             n_c, g = _count(xp, c), xp.where(c, gap, zero)
+            delta = delta and n_out <= JOINING_KEEPS_DIRECTIONS * n_c  # t is 0 on the new sites
         if not pre:
             z = g
         else:

@@ -12,7 +12,13 @@ import math
 import numpy as np
 
 from .._backend import dtype_name
-from ._ops import POINT_CORRECTIONS, ReliableUpdates, StallGuard, stopping
+from ._ops import (
+    JOINING_KEEPS_DIRECTIONS,
+    POINT_CORRECTIONS,
+    ReliableUpdates,
+    StallGuard,
+    stopping,
+)
 from ._ops import dot as _dot
 
 __all__ = ["iterate_sparse"]
@@ -108,7 +114,11 @@ def iterate_sparse(p, pb, substrate):
             # comes from the preconditioned direction, sized with all others by the line
             # minimisation (I_ol's site-local pressure would overshoot on whole regions)
             idx, g_c = np.concatenate((idx, out)), np.concatenate((g_c, s[out] + d))
-            out, delta = out[:0], False
+            if delta and out.size <= JOINING_KEEPS_DIRECTIONS * idx.size:
+                t_c = np.concatenate((t_c, np.zeros(out.size)))  # new sites: no direction yet
+            else:
+                delta = False
+            out = out[:0]
         if not pre:
             z_c = g_c
         else:

@@ -22,7 +22,7 @@ substrate's stiffness, the inverse of ``G`` on the whole grid, ``P_c`` the restr
 Vollebregt (J. Comput. Phys. 257, 333 (2014)). The condition number of ``G`` on a contact
 patch of radius ``R`` grows like ``R`` (its uniform mode is soft, its pixel modes stiff);
 ``P_c K P_c`` inverts it up to boundary effects, so the iteration count grows far less
-with the grid (SPEC §5 surface at 1e-3 E*: 96 → 41 iterations at 1024², 329 → 82 at
+with the grid (SPEC §5 surface at 1e-3 E*: 96 → 33 iterations at 1024², 329 → 46 at
 2048²; ``benchmarks/hardwall.py``). Three details make the preconditioned steps as
 robust as the plain ones (without them, displacement control with a large contact set
 could stall or cycle until the iteration cap):
@@ -34,7 +34,8 @@ could stall or cycle until the iteration cap):
 * Polonsky & Keer's I_ol rule gives an unloaded interpenetrating site the pressure
   ``-tau g`` of a plain step; with preconditioned steps these sites instead join the
   set the step acts on, so their pressure comes from ``z`` and the line minimisation
-  (a site-local pressure overshoots when a whole region interpenetrates).
+  (a site-local pressure overshoots when a whole region interpenetrates). When they are
+  few (:data:`._ops.JOINING_KEEPS_DIRECTIONS`) the conjugate directions are kept.
 * If a preconditioned step ever clips every loaded site (all contact lost), the solve
   goes on with plain steps, so that the restart cannot repeat the same path.
 
