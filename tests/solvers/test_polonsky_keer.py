@@ -1,5 +1,7 @@
 """Hard-wall solver against Westergaard, Hertz and exact identities."""
 
+import importlib
+
 import numpy as np
 import pytest
 
@@ -259,13 +261,55 @@ def test_few_joining_sites_keep_the_conjugate_directions(monkeypatch):
     # restarting the directions whenever a site or two interpenetrate and join the step
     # made the late iterations steepest descent; keeping them (the new sites start with
     # no direction) reaches the same solution in fewer iterations
-    from roughcontact.solvers import _pk_sparse
+    from roughcontact.solvers import _pk_sparse, polonsky_keer
 
     h = rc.self_affine((256, 256), hurst=0.8, rms_slope=0.1, short_cutoff=8, seed=1)
     sub = rc.Substrate((256, 256))
-    kept = rc.solve(h, sub, load=1e-2, tol=1e-10)
+    kept = polonsky_keer(h, sub, load=1e-2, tol=1e-10, nested=False)
     monkeypatch.setattr(_pk_sparse, "JOINING_KEEPS_DIRECTIONS", 0.0)
-    restarted = rc.solve(h, sub, load=1e-2, tol=1e-10)
+    restarted = polonsky_keer(h, sub, load=1e-2, tol=1e-10, nested=False)
     assert kept.converged and restarted.converged
     assert kept.iterations <= restarted.iterations - 3
     np.testing.assert_allclose(kept.pressure, restarted.pressure, atol=1e-8 * kept.pressure.max())
+
+
+@pytest.mark.parametrize(
+    ("control", "thickness"), [("load", None), ("offset", None), ("load", 40.0)]
+)
+def test_nested_cold_start_finds_the_same_solution_faster(control, thickness, monkeypatch):
+    # a cold solve on a large grid starts from the problem solved on the grid coarsened
+    # 2x2 (recursively): the same Signorini solution in fewer iterations on the fine grid
+    from roughcontact.solvers import polonsky_keer
+
+    pk = importlib.import_module("roughcontact.solvers.polonsky_keer")
+    h = rc.self_affine((256, 256), hurst=0.8, rms_slope=0.1, short_cutoff=8, seed=2)
+    sub = rc.Substrate((256, 256), thickness=thickness, poisson=0.3)
+    kw = {"load": 2e-3} if control == "load" else {"offset": float(h.max() - 1.5 * h.std())}
+    coarse_grids = []
+    guess = pk._coarse_guess
+
+    def spy(h, substrate, *args):
+        coarse_grids.append(substrate.shape)
+        return guess(h, substrate, *args)
+
+    monkeypatch.setattr(pk, "_coarse_guess", spy)
+    nested = polonsky_keer(h, sub, tol=1e-10, **kw)
+    cold = polonsky_keer(h, sub, tol=1e-10, nested=False, **kw)
+    assert nested.converged and cold.converged
+    assert coarse_grids == [(256, 256), (128, 128)]  # 128² is below NESTED_MIN_SIZE
+    assert nested.iterations < cold.iterations
+    np.testing.assert_array_equal(nested.pressure > 0, cold.pressure > 0)
+    np.testing.assert_allclose(nested.pressure, cold.pressure, atol=1e-8 * cold.pressure.max())
+    assert nested.offset == pytest.approx(cold.offset, abs=1e-9 * h.std())
+
+
+def test_nested_start_skipped_on_odd_grids_and_warm_starts():
+    from roughcontact.solvers import polonsky_keer
+
+    h = rc.self_affine((257, 256), hurst=0.8, rms_slope=0.1, short_cutoff=8, seed=2)
+    sub = rc.Substrate((257, 256))
+    a = polonsky_keer(h, sub, load=2e-3)
+    b = polonsky_keer(h, sub, load=2e-3, nested=False)
+    assert a.iterations == b.iterations and np.array_equal(a.pressure, b.pressure)
+    warm = polonsky_keer(h, sub, load=2e-3, initial=a)
+    assert warm.converged and warm.iterations <= 2

@@ -39,6 +39,14 @@ could stall or cycle until the iteration cap):
 * If a preconditioned step ever clips every loaded site (all contact lost), the solve
   goes on with plain steps, so that the restart cannot repeat the same path.
 
+Nested iteration (default on, ``nested=True``): a cold solve on a grid of at least
+:data:`NESTED_MIN_SIZE` points with even sides starts from the same problem solved on the
+grid coarsened 2×2 (block means of the heights, twice the pixel size, the same load or
+offset; recursively, to tolerance :data:`NESTED_TOL`), its pressure copied to each
+block's four sites. The fine grid then only corrects the contact set at its own scale
+(SPEC §5 surface: 33 → 20 iterations at 1024², 46 → 27 at 2048², 1.7-2.1× faster in
+all including the coarse solves, which cost about a third of the fine grid's work).
+
 Cost per iteration: one FFT convolution for the step (``G`` of the search direction),
 one for the preconditioner, and a third only on iterations where the projection changed
 the contact set at more than a few sites (``G`` of that correction; otherwise the
@@ -65,14 +73,18 @@ GPU does full-grid passes at memory bandwidth. Both take the same steps (tested)
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import time
 from dataclasses import dataclass
+
+import numpy as np
 
 from .._backend import (
     array_device,
     array_namespace,
     computes_on_heights_device,
+    dtype_name,
     is_numpy_array,
     to_numpy,
 )
@@ -89,6 +101,37 @@ from ._pk_sparse import iterate_sparse
 from .observables import make_result
 
 __all__ = ["polonsky_keer"]
+
+
+#: Cold solves on grids of at least this many points start from the same problem solved
+#: on the grid coarsened 2×2 ("nested iteration"), recursively, ...
+NESTED_MIN_SIZE = 1 << 16
+#: ... to this tolerance: a starting guess only.
+NESTED_TOL = 1e-3
+
+
+def _coarse_guess(h, substrate, load, offset, max_iter, precondition):
+    """Pressure on ``h``'s grid from the problem on the grid coarsened 2×2, or None.
+
+    The coarse heights are 2×2 block means on a substrate with twice the pixel size (the
+    same continuum problem at half the resolution; block means keep mean(h), hence the
+    admissible offsets), the coarse pressure is copied to the four fine sites of each
+    block (and rescaled to the load by :func:`_initial_pressure`, which also moves it to
+    the heights' device).
+    """
+    nx, ny = h.shape
+    if nx * ny < NESTED_MIN_SIZE or nx % 2 or ny % 2:
+        return None
+    xp = array_namespace(h)
+    mx, my = nx // 2, ny // 2
+    coarse = xp.mean(xp.reshape(h, (mx, 2, my, 2)), axis=(1, 3))
+    sub = dataclasses.replace(substrate, shape=(mx, my), pixel_size=2 * substrate.pixel_size)
+    res = polonsky_keer(
+        coarse, sub, load=load, offset=offset, tol=NESTED_TOL, max_iter=max_iter,
+        precondition=precondition, dtype=dtype_name(h),
+    )  # fmt: skip
+    p = to_numpy(res.pressure).reshape(mx, 1, my, 1)  # results live on the host
+    return np.broadcast_to(p, (mx, 2, my, 2)).reshape(nx, ny)
 
 
 def _initial_pressure(initial, heights, substrate, load, offset):
@@ -128,6 +171,7 @@ def polonsky_keer(
     max_iter=5000,
     callback=None,
     precondition=True,
+    nested=True,
     device=None,
     dtype=None,
 ):
@@ -154,6 +198,11 @@ def polonsky_keer(
     precondition : bool
         Precondition the conjugate directions with the substrate's stiffness restricted
         to the contact set (see the module docstring); False gives plain Polonsky–Keer.
+    nested : bool
+        Without ``initial``, start from the solution of the same problem on the grid
+        coarsened 2×2 (recursively, on grids of at least :data:`NESTED_MIN_SIZE` points
+        with even sides; see the module docstring). ``iterations`` counts the iterations
+        on this grid; ``solve_seconds`` includes the coarse solves.
     device : {None, "cpu", "cuda", "cuda:N"}, optional
         Where to compute (default: where ``heights`` live); see :func:`roughcontact.to_device`.
     dtype : {None, "float64", "float32"}, optional
@@ -191,6 +240,8 @@ def polonsky_keer(
         zero = xp.zeros_like(hf)
         return result(zero, zero, h_max if offset is None else offset, 0, 0.0, True, "no contact")
 
+    if initial is None and nested:
+        initial = _coarse_guess(h, substrate, load, offset, max_iter, precondition)
     p = _initial_pressure(initial, h, substrate, load, offset)
     fast = xp.float32  # the convolutions' precision (see "Mixed precision" above)
     problem = _Problem(
