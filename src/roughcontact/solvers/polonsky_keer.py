@@ -44,8 +44,8 @@ Nested iteration (default on, ``nested=True``): a cold solve on a grid of at lea
 grid coarsened 2×2 (block means of the heights, twice the pixel size, the same load or
 offset; recursively, to tolerance :data:`NESTED_TOL`), its pressure copied to each
 block's four sites. The fine grid then only corrects the contact set at its own scale
-(SPEC §5 surface: 33 → 20 iterations at 1024², 46 → 27 at 2048², 1.7-2.1× faster in
-all including the coarse solves, which cost about a third of the fine grid's work).
+(SPEC §5 surface: 33 → 20 iterations at 1024², 46 → 27 at 2048²; 1.3-2.1× faster to
+the solution at 256²-2048², the coarse solves included; ``benchmarks/hardwall.py``).
 
 Cost per iteration: one FFT convolution for the step (``G`` of the search direction),
 one for the preconditioner, and a third only on iterations where the projection changed
