@@ -216,3 +216,14 @@ def test_hard_wall_nested_start_on_any_backend():
     got = rc.solve(strict(h), sub, rc.HardWall(), load=2e-3, tol=1e-10)
     assert ref.converged and got.converged and got.iterations == ref.iterations
     np.testing.assert_allclose(got.pressure, ref.pressure, rtol=1e-9, atol=1e-12 * ref.load)
+
+
+def test_hard_wall_dense_loop_same_steps_after_a_lost_contact_set():
+    # the restart with plain steps and their end take the same course in both loops
+    h = rc.self_affine((128, 128), hurst=0.8, rms_slope=0.1, short_cutoff=8, seed=2)
+    sub = rc.Substrate((128, 128))
+    offset = float(h.mean()) + 0.01 * float(h.std())
+    ref = rc.solve(h, sub, rc.HardWall(), offset=offset, tol=1e-9)
+    got = rc.solve(strict(h), sub, rc.HardWall(), offset=offset, tol=1e-9)
+    assert ref.converged and got.converged and got.iterations == ref.iterations
+    np.testing.assert_allclose(got.pressure, ref.pressure, rtol=1e-8, atol=1e-11 * ref.load)

@@ -313,3 +313,24 @@ def test_nested_start_skipped_on_odd_grids_and_warm_starts():
     assert a.iterations == b.iterations and np.array_equal(a.pressure, b.pressure)
     warm = polonsky_keer(h, sub, load=2e-3, initial=a)
     assert warm.converged and warm.iterations <= 2
+
+
+def test_preconditioning_resumes_after_a_lost_contact_set(monkeypatch):
+    # with most of the surface in contact the first preconditioned steps from the local
+    # guess can lose the whole contact set; the restart then takes plain steps, which
+    # cannot repeat that path, and preconditioned ones again once the residual is well
+    # below its value before the loss (plain to the end took 290 iterations here)
+    from roughcontact.solvers import _pk_sparse
+
+    h = rc.self_affine((128, 128), hurst=0.8, rms_slope=0.1, short_cutoff=8, seed=2)
+    sub = rc.Substrate((128, 128))
+    offset = float(h.mean()) + 0.01 * float(h.std())
+    res = rc.solve(h, sub, offset=offset, tol=1e-9)
+    assert res.converged and res.iterations < 80 and res.repulsive_area > 0.8
+    gap = offset - h + sub.deflection(res.pressure)
+    assert np.abs(gap[res.pressure > 0]).max() <= 2e-9 * h.std()
+    assert gap.min() >= -2e-9 * h.std()
+    monkeypatch.setattr(_pk_sparse, "RESUME_PRECONDITIONING", 0.0)  # plain to the end
+    slow = rc.solve(h, sub, offset=offset, tol=1e-9)
+    assert slow.converged and slow.iterations > 2 * res.iterations
+    np.testing.assert_allclose(res.pressure, slow.pressure, atol=1e-7 * slow.pressure.max())

@@ -15,6 +15,7 @@ from .._backend import array_device, array_namespace, dtype_name, to_numpy
 from ._ops import (
     JOINING_KEEPS_DIRECTIONS,
     POINT_CORRECTIONS,
+    RESUME_PRECONDITIONING,
     ReliableUpdates,
     StallGuard,
     dot,
@@ -62,6 +63,7 @@ def iterate_dense(p, pb):
     t = kernel = None
     delta, g_old, exact = False, 1.0, True
     pre = pb.precondition is not None  # whether the steps are preconditioned
+    resume_below = -math.inf  # after a lost contact set: plain steps down to this residual
     reliable = ReliableUpdates(pb.tol)
 
     def fast(op, x):  # op in fast precision, the result back in the heights' precision
@@ -77,7 +79,9 @@ def iterate_dense(p, pb):
                 residual, converged, message = 0.0, True, "no contact"
                 break
             p = xp.where(overlap, -(s + offset) * pb.winkler, zero)
-            s, c, exact, delta, pre = conv(p) - hf, overlap, True, False, False
+            s, c, exact, delta = conv(p) - hf, overlap, True, False
+            if pre:  # plain steps for a while (see _pk_sparse)
+                pre, resume_below = False, RESUME_PRECONDITIONING * residual
             continue
         d = -total(xp.where(c, s, zero)) / n_c if target is not None else offset
         gap = s + d
@@ -99,6 +103,8 @@ def iterate_dense(p, pb):
             break
         it += 1
         reliable.step()
+        if not pre and residual < resume_below:
+            pre, delta = True, False
 
         if pre and any_out:  # the interpenetrating sites join the step (see _pk_sparse)
             n_out = _count(xp, out)
@@ -151,7 +157,9 @@ def iterate_dense(p, pb):
             if target is not None:
                 p_sum = total(p)
                 if not p_sum > 0:  # everything was clipped: restart from uniform pressure
-                    p, delta, pre = xp.full_like(p, target / p.shape[0]), False, False
+                    p, delta = xp.full_like(p, target / p.shape[0]), False
+                    if pre:
+                        pre, resume_below = False, RESUME_PRECONDITIONING * residual
                     c = xp.ones_like(c)
                     s, exact = conv(p) - hf, True
                 elif p_sum != target:  # back to the load: s = lam (u + G c) - h

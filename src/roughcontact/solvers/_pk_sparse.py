@@ -15,6 +15,7 @@ from .._backend import dtype_name
 from ._ops import (
     JOINING_KEEPS_DIRECTIONS,
     POINT_CORRECTIONS,
+    RESUME_PRECONDITIONING,
     ReliableUpdates,
     StallGuard,
     stopping,
@@ -67,6 +68,7 @@ def iterate_sparse(p, pb, substrate):
     t_c = None
     delta, g_old = False, 1.0
     pre = pb.precondition is not None  # whether the steps are preconditioned
+    resume_below = -math.inf  # after a lost contact set: plain steps down to this residual
     converged, message, residual, it = False, "iteration cap reached", math.inf, 0
     stall = StallGuard(dtype_name(hf))
     exact = True  # s equals G p - h from a fresh convolution (not updated incrementally)
@@ -87,9 +89,10 @@ def iterate_sparse(p, pb, substrate):
                 break
             p[ov] = -(s[ov] + offset) * winkler
             s, idx, exact, delta = _subtract_heights(conv(p), hf), ov, True, False
-            # if a preconditioned step lost all contact, plain steps from here on: this
-            # restart must not repeat the same path
-            pre = False
+            # if a preconditioned step lost all contact, plain steps until the residual
+            # is well below where it was: this restart must not repeat the same path
+            if pre:
+                pre, resume_below = False, RESUME_PRECONDITIONING * residual
             continue
         s_c = s[idx]
         d = -float(s_c.mean()) if target is not None else offset
@@ -109,6 +112,8 @@ def iterate_sparse(p, pb, substrate):
         it += 1
         reliable.step()
 
+        if not pre and residual < resume_below:
+            pre, delta = True, False
         if pre and out.size:
             # the interpenetrating sites join the sites the step acts on: their pressure
             # comes from the preconditioned direction, sized with all others by the line
@@ -174,7 +179,9 @@ def iterate_sparse(p, pb, substrate):
             if target is not None:
                 total = float(p[idx].sum())
                 if not total > 0:  # everything was clipped: restart from uniform pressure
-                    p[:], idx, delta, pre = target / n, np.arange(n), False, False  # (as above)
+                    p[:], idx, delta = target / n, np.arange(n), False
+                    if pre:  # (as above)
+                        pre, resume_below = False, RESUME_PRECONDITIONING * residual
                     s, exact = _subtract_heights(conv(p), hf), True
                 elif total != target:  # back to the load: s = lam (u + G c) - h
                     lam = target / total

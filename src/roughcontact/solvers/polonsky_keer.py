@@ -37,7 +37,8 @@ could stall or cycle until the iteration cap):
   (a site-local pressure overshoots when a whole region interpenetrates). When they are
   few (:data:`._ops.JOINING_KEEPS_DIRECTIONS`) the conjugate directions are kept.
 * If a preconditioned step ever clips every loaded site (all contact lost), the solve
-  goes on with plain steps, so that the restart cannot repeat the same path.
+  restarts with plain steps, so that it cannot repeat the same path, until the residual
+  is below :data:`._ops.RESUME_PRECONDITIONING` of its value before the loss.
 
 Nested iteration (default on, ``nested=True``): a cold solve on a grid of at least
 :data:`NESTED_MIN_SIZE` points with even sides starts from the same problem solved on the
