@@ -320,7 +320,7 @@ def test_preconditioning_resumes_after_a_lost_contact_set(monkeypatch):
     # guess can lose the whole contact set; the restart then takes plain steps, which
     # cannot repeat that path, and preconditioned ones again once the residual is well
     # below its value before the loss (plain to the end took 290 iterations here)
-    from roughcontact.solvers import _pk_sparse
+    from roughcontact.solvers import _ops
 
     h = rc.self_affine((128, 128), hurst=0.8, rms_slope=0.1, short_cutoff=8, seed=2)
     sub = rc.Substrate((128, 128))
@@ -330,7 +330,7 @@ def test_preconditioning_resumes_after_a_lost_contact_set(monkeypatch):
     gap = offset - h + sub.deflection(res.pressure)
     assert np.abs(gap[res.pressure > 0]).max() <= 2e-9 * h.std()
     assert gap.min() >= -2e-9 * h.std()
-    monkeypatch.setattr(_pk_sparse, "RESUME_PRECONDITIONING", 0.0)  # plain to the end
+    monkeypatch.setattr(_ops, "RESUME_PRECONDITIONING", 0.0)  # plain to the end
     slow = rc.solve(h, sub, offset=offset, tol=1e-9)
     assert slow.converged and slow.iterations > 2 * res.iterations
     np.testing.assert_allclose(res.pressure, slow.pressure, atol=1e-7 * slow.pressure.max())

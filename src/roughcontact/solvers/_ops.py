@@ -18,6 +18,7 @@ __all__ = [
     "RELIABLE_EVERY",
     "ReliableUpdates",
     "StallGuard",
+    "StepKind",
     "check_hard_wall_offset",
     "check_problem",
     "compliance_operator",
@@ -145,6 +146,32 @@ JOINING_KEEPS_DIRECTIONS = 0.01
 #: up to 1800 iterations with most of a 256x512 surface in contact; this rule, 62-378;
 #: 0.3 was the best of 0.1, 0.3 and 0.5).
 RESUME_PRECONDITIONING = 0.3
+
+
+class StepKind:
+    """Whether the hard wall's steps are preconditioned, shared by its two loops.
+
+    Preconditioned when the problem has a preconditioner, except for a while after a
+    preconditioned step lost the whole contact set: the restart then takes plain steps
+    (they cannot repeat the losing path) until the residual is below
+    :data:`RESUME_PRECONDITIONING` of its value before the loss.
+    """
+
+    def __init__(self, precondition: bool):
+        self.pre, self.resume_below = precondition, -math.inf
+
+    def lost_contact(self, residual: float) -> None:
+        """The loop restarts because the whole contact set was lost."""
+        if self.pre:
+            self.pre, self.resume_below = False, RESUME_PRECONDITIONING * residual
+
+    def resumes(self, residual: float) -> bool:
+        """Whether preconditioned steps return with this one (directions must restart)."""
+        if self.pre or residual >= self.resume_below:
+            return False
+        self.pre = True
+        return True
+
 
 #: Mixed-precision iterations ("reliable updates"): an exact evaluation of what the
 #: single-precision increments update is redone once the residual has fallen by this

@@ -15,9 +15,9 @@ from .._backend import array_device, array_namespace, dtype_name, to_numpy
 from ._ops import (
     JOINING_KEEPS_DIRECTIONS,
     POINT_CORRECTIONS,
-    RESUME_PRECONDITIONING,
     ReliableUpdates,
     StallGuard,
+    StepKind,
     dot,
     stopping,
     total,
@@ -62,8 +62,7 @@ def iterate_dense(p, pb):
     c = p > 0
     t = kernel = None
     delta, g_old, exact = False, 1.0, True
-    pre = pb.precondition is not None  # whether the steps are preconditioned
-    resume_below = -math.inf  # after a lost contact set: plain steps down to this residual
+    kind = StepKind(pb.precondition is not None)
     reliable = ReliableUpdates(pb.tol)
 
     def fast(op, x):  # op in fast precision, the result back in the heights' precision
@@ -80,8 +79,7 @@ def iterate_dense(p, pb):
                 break
             p = xp.where(overlap, -(s + offset) * pb.winkler, zero)
             s, c, exact, delta = conv(p) - hf, overlap, True, False
-            if pre:  # plain steps for a while (see _pk_sparse)
-                pre, resume_below = False, RESUME_PRECONDITIONING * residual
+            kind.lost_contact(residual)  # plain steps for a while (see _pk_sparse)
             continue
         d = -total(xp.where(c, s, zero)) / n_c if target is not None else offset
         gap = s + d
@@ -103,8 +101,9 @@ def iterate_dense(p, pb):
             break
         it += 1
         reliable.step()
-        if not pre and residual < resume_below:
-            pre, delta = True, False
+        if kind.resumes(residual):
+            delta = False
+        pre = kind.pre
 
         if pre and any_out:  # the interpenetrating sites join the step (see _pk_sparse)
             n_out = _count(xp, out)
@@ -158,8 +157,7 @@ def iterate_dense(p, pb):
                 p_sum = total(p)
                 if not p_sum > 0:  # everything was clipped: restart from uniform pressure
                     p, delta = xp.full_like(p, target / p.shape[0]), False
-                    if pre:
-                        pre, resume_below = False, RESUME_PRECONDITIONING * residual
+                    kind.lost_contact(residual)
                     c = xp.ones_like(c)
                     s, exact = conv(p) - hf, True
                 elif p_sum != target:  # back to the load: s = lam (u + G c) - h

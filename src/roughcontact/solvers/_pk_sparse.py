@@ -15,9 +15,9 @@ from .._backend import dtype_name
 from ._ops import (
     JOINING_KEEPS_DIRECTIONS,
     POINT_CORRECTIONS,
-    RESUME_PRECONDITIONING,
     ReliableUpdates,
     StallGuard,
+    StepKind,
     stopping,
 )
 from ._ops import dot as _dot
@@ -67,8 +67,7 @@ def iterate_sparse(p, pb, substrate):
     work = np.empty_like(hf)  # full-grid scratch in the heights' precision
     t_c = None
     delta, g_old = False, 1.0
-    pre = pb.precondition is not None  # whether the steps are preconditioned
-    resume_below = -math.inf  # after a lost contact set: plain steps down to this residual
+    kind = StepKind(pb.precondition is not None)
     converged, message, residual, it = False, "iteration cap reached", math.inf, 0
     stall = StallGuard(dtype_name(hf))
     exact = True  # s equals G p - h from a fresh convolution (not updated incrementally)
@@ -91,8 +90,7 @@ def iterate_sparse(p, pb, substrate):
             s, idx, exact, delta = _subtract_heights(conv(p), hf), ov, True, False
             # if a preconditioned step lost all contact, plain steps until the residual
             # is well below where it was: this restart must not repeat the same path
-            if pre:
-                pre, resume_below = False, RESUME_PRECONDITIONING * residual
+            kind.lost_contact(residual)
             continue
         s_c = s[idx]
         d = -float(s_c.mean()) if target is not None else offset
@@ -112,8 +110,9 @@ def iterate_sparse(p, pb, substrate):
         it += 1
         reliable.step()
 
-        if not pre and residual < resume_below:
-            pre, delta = True, False
+        if kind.resumes(residual):
+            delta = False
+        pre = kind.pre
         if pre and out.size:
             # the interpenetrating sites join the sites the step acts on: their pressure
             # comes from the preconditioned direction, sized with all others by the line
@@ -180,8 +179,7 @@ def iterate_sparse(p, pb, substrate):
                 total = float(p[idx].sum())
                 if not total > 0:  # everything was clipped: restart from uniform pressure
                     p[:], idx, delta = target / n, np.arange(n), False
-                    if pre:  # (as above)
-                        pre, resume_below = False, RESUME_PRECONDITIONING * residual
+                    kind.lost_contact(residual)  # (as above)
                     s, exact = _subtract_heights(conv(p), hf), True
                 elif total != target:  # back to the load: s = lam (u + G c) - h
                     lam = target / total
