@@ -65,6 +65,7 @@ from .._backend import (
     to_numpy,
 )
 from .._validate import ParameterError
+from ._inplace import Workspace
 from ._ops import (
     ReliableUpdates,
     StallGuard,
@@ -72,9 +73,9 @@ from ._ops import (
     compliance_operator,
     false_position,
     illinois,
-    in_single_precision,
     stiffness_operator,
     stopping,
+    total,
 )
 from ._ops import dot as _dot
 from .observables import make_result
@@ -160,9 +161,6 @@ def minimize_energy(
     xp = array_namespace(h)
     elastic_pressure = stiffness_operator(substrate)
     compliance = compliance_operator(substrate)
-    # single precision for what only steers or updates incrementally (module docstring)
-    compliance_single = in_single_precision(compliance)
-    elastic_pressure_single = in_single_precision(elastic_pressure)
     self_stiffness = substrate.self_stiffness
 
     base = offset - xp.reshape(h, (-1,))  # gap = base + w
@@ -177,34 +175,49 @@ def minimize_energy(
     else:
         w = xp.zeros(n, dtype=h.dtype, device=array_device(h))
     kw = elastic_pressure(w)
+    gap = base + w  # the iterate (w = gap - base is only formed when K w is recomputed)
+    del w
+    work = Workspace(gap)
+    # float32 copies of what the single-precision convolutions take (module docstring)
+    fast = xp.empty(n, dtype=xp.float32, device=array_device(h))
+    # the interaction pressure is zero beyond its cutoff: kept as its values p_near on
+    # the sites `near` (None: every site) where it can be nonzero
+    cutoff = interaction.cutoff
+    near = work.sites(gap < cutoff) if math.isfinite(cutoff) else None
+    p_near = interaction.pressure(gap if near is None else gap[near])
+    gr = xp.empty_like(gap)
 
-    def imbalance(p_int):
-        gr = kw - p_int
-        if rigid:
-            gr -= xp.mean(gr)  # the uniform mode is frozen: its force is the load
-        return gr
+    def imbalance():
+        """gr = K w - p_int, without its mean when the uniform mode is rigid (its force
+        is the load)."""
+        m = (total(kw) - total(p_near)) / n if rigid else 0.0
+        g = work.shifted(gr, kw, m)
+        if near is None:
+            g -= p_near
+        else:
+            g[near] -= p_near
+        return g
 
-    gap = base + w
-    p_int = _local(interaction.pressure, interaction.cutoff, gap)
-    gr = imbalance(p_int)
+    gr = imbalance()
     exact = True  # kw is K w from a fresh float64 convolution (not updated incrementally)
     reliable = ReliableUpdates(tol)
     stiff = diagonal = None
-    s = ks = z_old = None
+    directions = False  # whether s, ks hold conjugate directions to build on
+    s, ks, z, z_old = (xp.empty_like(gap) for _ in range(4))
     gz_old = 1.0
     converged, message, residual, it = False, "iteration cap reached", math.inf, 0
     stall = StallGuard(dtype_name(h))
     while True:
-        residual = float(xp.max(xp.abs(gr))) / es
+        residual = max(float(xp.max(gr)), -float(xp.min(gr))) / es
         if not math.isfinite(residual):
             message = f"non-finite state at iteration {it} (check inputs and the interaction)"
             break
         if (update := reliable.check(residual, exact)) == "refresh":
-            kw, exact = elastic_pressure(w), True
-            gr = imbalance(p_int)
+            kw, exact = elastic_pressure(gap - base), True
+            gr = imbalance()
             continue
         if update == "restart":
-            s = None  # the conjugate directions were built on a drifted gradient
+            directions = False  # they were built on a drifted gradient
         if (end := stopping(residual <= tol, residual, stall, it, max_iter)) is not None:
             converged, message = end
             break
@@ -213,44 +226,43 @@ def minimize_energy(
             break
         it += 1
         reliable.step()
-        restart = s is None or it % restart_every == 0
+        restart = not directions or it % restart_every == 0
         if it % refresh_every == 0 or (it == 1 and initial is not None):
-            stiff, diagonal = _stiff_sites(interaction, gap, self_stiffness)
+            stiff, diagonal = _stiff_sites(interaction, gap, self_stiffness, work)
+        z_old, z = z, z_old  # z_old is the previous z; its array is reused for the new z
         z, kz = _precondition(
-            gr, stiff, diagonal, compliance, compliance_single, elastic_pressure_single, rigid
+            gr, stiff, diagonal, compliance, elastic_pressure, rigid, out=z, work=work, fast=fast
         )
         gz = _dot(gr, z)
         beta = 0.0 if restart else max(0.0, (gz - _dot(gr, z_old)) / gz_old)  # PR+
         if beta > 0:  # in place: s = -z + beta s, ks = -K z + beta ks
-            s *= beta
-            s -= z
-            ks *= beta
-            ks -= kz
+            work.scale_sub(s, beta, z)
+            work.scale_sub(ks, beta, kz)
         else:
-            s, ks = -z, -kz
+            s, ks = work.negative(s, z), work.negative(ks, kz)
         slope0 = _dot(gr, s)
         if slope0 >= 0:  # not a descent direction: restart along the preconditioned -gr
-            s, ks = -z, -kz
+            s, ks = work.negative(s, z), work.negative(ks, kz)
             slope0 = -gz
-        z_old, gz_old = z, gz
-        alpha, p_int = _line_minimum(interaction, gap, s, kw, ks, slope0, with_pressure=True)
+        gz_old, directions = gz, True
+        alpha, near, p_near = _line_minimum(
+            interaction, gap, s, kw, ks, slope0, with_pressure=True, work=work
+        )
         if not math.isfinite(alpha):
             message = f"line search failed at iteration {it}"
             break
-        w += alpha * s
-        kw += alpha * ks
+        work.axpy(gap, alpha, s)
+        work.axpy(kw, alpha, ks)
         exact = False
-        gap = base + w
-        gr = imbalance(p_int)
+        gr = imbalance()
 
-    gap = base + w
-    p_int = _local(interaction.pressure, interaction.cutoff, gap)
+    p_int = _local(interaction.pressure, cutoff, gap)
     rep, att = interaction.classify(gap)
     return make_result(
         h,
         substrate,
         xp.reshape(p_int, shape),
-        xp.reshape(w, shape),
+        xp.reshape(gap - base, shape),
         offset,
         it,
         residual,
@@ -264,56 +276,81 @@ def minimize_energy(
     )
 
 
-def _stiff_sites(interaction, gap, self_stiffness):
+def _stiff_sites(interaction, gap, self_stiffness, work=None):
     """The preconditioner's stiff sites, V'' > STIFF_FRACTION K_ii, and 1/(K_ii + V'') there.
 
-    Returns ``(None, None)`` when no site is stiff (then the preconditioner is the
-    Green's function alone).
+    Returns ``(sites, diagonal)`` (see :mod:`._inplace` for sites; ``diagonal`` holds the
+    values on them, in their order), or ``(None, None)`` when no site is stiff (then the
+    preconditioner is the Green's function alone).
     """
-    xp = array_namespace(gap)
-    curvature = _local(interaction.curvature, interaction.cutoff, gap)
+    work = work or Workspace(gap)
+    xp = work.xp
+    cutoff = interaction.cutoff
+    # V'' = 0 beyond the cutoff: only sites inside it can be stiff
+    near = work.sites(gap < cutoff) if math.isfinite(cutoff) else None
+    curvature = interaction.curvature(gap if near is None else gap[near])
     stiff = curvature > STIFF_FRACTION * self_stiffness
     if not bool(xp.any(stiff)):
         return None, None
-    return stiff, 1.0 / (self_stiffness + xp.where(stiff, curvature, 0.0))
+    diagonal = 1.0 / (self_stiffness + curvature[stiff])
+    if near is None:
+        return work.sites(stiff), diagonal
+    if work.inplace:
+        return near[stiff], diagonal
+    sites = xp.zeros_like(near)  # a mask over the grid
+    sites[near] = stiff
+    return sites, diagonal
 
 
-def _precondition(gr, stiff, diagonal, compliance, compliance_single, elastic_pressure, rigid):
+def _precondition(
+    gr, stiff, diagonal, compliance, elastic_pressure, rigid, *, out=None, work=None, fast=None
+):
     """Block-preconditioned gradient ``z`` and its elastic pressure ``K z``.
 
     ``z = diagonal * gr`` on the stiff sites and ``K^-1 (gr on the other sites)`` there;
     both blocks are symmetric positive definite, so is the preconditioner (restricted
-    to mean-free fields when the uniform mode is rigid). ``K z`` is computed in single
-    precision (``elastic_pressure`` is the single-precision stiffness): it only updates
-    the elastic pressure incrementally (see the module docstring).
+    to mean-free fields when the uniform mode is rigid). With ``fast`` (a float32 array
+    of the grid's size) both convolutions run in single precision: the Green's-function
+    block only steers the search direction, and ``K z`` (then returned in float32) only
+    updates the elastic pressure incrementally (see the module docstring). ``out``
+    receives ``z`` where the backend allows.
     """
-    xp = array_namespace(gr)
+    work = work or Workspace(gr)
+    xp = work.xp
     if stiff is None:
         # K K^-1 is the identity on the non-uniform modes, and gr has no uniform mode
         # when it is rigid: no second convolution
         return compliance(gr), gr
-    soft_block = compliance_single(xp.where(stiff, 0.0, gr))
-    z = xp.where(stiff, gr * diagonal, soft_block)
-    if rigid:
-        z -= xp.mean(z)
-    return z, elastic_pressure(z)
+    soft = work.cast(fast, gr) if fast is not None else xp.asarray(gr, copy=True)
+    soft[stiff] = 0.0
+    soft_block = compliance(soft)
+    z_stiff = gr[stiff] * diagonal
+    shift = 0.0
+    if rigid:  # the mean of z, without a pass of its own
+        shift = (total(soft_block) - total(soft_block[stiff]) + total(z_stiff)) / gr.shape[0]
+    z = work.shifted(out if out is not None else xp.empty_like(gr), soft_block, shift)
+    z[stiff] = z_stiff - shift
+    return z, elastic_pressure(work.cast(fast, z) if fast is not None else z)
 
 
-def _line_minimum(interaction, gap, s, kw, ks, slope0, rtol=1e-3, max_eval=60, with_pressure=False):
+def _line_minimum(
+    interaction, gap, s, kw, ks, slope0, rtol=1e-3, max_eval=60, with_pressure=False, work=None
+):
     """Step ``alpha`` minimising E along ``w + alpha s`` (a root of the directional slope).
 
     phi'(alpha) = s.(kw + alpha ks) - s.p_int(gap + alpha s); the elastic part is linear
     in alpha. Bracket a sign change, then safeguarded secant (Illinois) steps until
     |phi'| <= rtol |phi'(0)|. Returns ``alpha`` (NaN if no bracket was found), and with
-    ``with_pressure`` also the interaction pressure at ``gap + alpha s`` on every site
-    (the last evaluation, so the caller's gradient needs no evaluation of its own).
+    ``with_pressure`` ``(alpha, sites, pressure)``: the interaction pressure at
+    ``gap + alpha s`` (the last evaluation, so the caller's gradient needs no evaluation
+    of its own) on ``sites`` (see :mod:`._inplace`; None: every site), zero elsewhere.
     """
     c0, c1 = _dot(s, kw), _dot(s, ks)
-    xp = array_namespace(gap)
+    work = work or Workspace(gap)
     # sites that can feel the interaction for alpha <= 4; the others only matter beyond
     band = math.isfinite(interaction.cutoff)
     if band:
-        active = xp.minimum(gap, gap + 4.0 * s) < interaction.cutoff
+        active = work.band(gap, s, 4.0, interaction.cutoff)
         sa, ga = s[active], gap[active]
     else:
         sa, ga = s, gap
@@ -328,13 +365,9 @@ def _line_minimum(interaction, gap, s, kw, ks, slope0, rtol=1e-3, max_eval=60, w
         if not with_pressure:
             return alpha
         if not math.isfinite(alpha):
-            return alpha, None
-        p = last["pressure"]
-        if last["band"]:  # zero outside the band for every alpha <= 4
-            full = xp.zeros_like(gap)
-            full[active] = p
-            p = full
-        return alpha, p
+            return alpha, None, None
+        # the band's pressure is that of every site for alpha <= 4 (zero off the band)
+        return alpha, (active if last["band"] else None), last["pressure"]
 
     lo, f_lo = 0.0, slope0
     # Newton guess with the curvature at alpha = 0
