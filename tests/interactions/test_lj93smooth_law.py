@@ -85,3 +85,10 @@ def test_classify(law):
     rep, att = law.classify(np.array([0.5 * a0, a0, a0 + 0.5 * law.range, law.cutoff + 1]))
     assert rep.tolist() == [True, False, False, False]
     assert att.tolist() == [False, False, True, False]
+
+
+def test_fields_of_any_shape_give_the_same_values(law):
+    # the core is selected by index arrays on flat fields and by masks otherwise
+    g = np.linspace(-0.2, law.cutoff + 0.2, 96)
+    for f in (law.pressure, law.curvature):
+        np.testing.assert_array_equal(f(g.reshape(8, 12)).ravel(), f(g))

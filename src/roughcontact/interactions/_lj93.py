@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from .._backend import array_namespace
 
-__all__ = ["SIGMA_OVER_A0", "lj93_terms", "lj93_with_core"]
+__all__ = ["SIGMA_OVER_A0", "lj93_derivative", "lj93_terms", "lj93_with_core"]
 
 SIGMA_OVER_A0 = 2.5 ** (1.0 / 6.0)
 # g_min as a fraction of a0: below it the core is continued as a C2 quadratic, so a solver
@@ -41,3 +41,26 @@ def lj93_with_core(g, epsilon: float, sigma: float, a0: float):
     v, dv, d2v = lj93_terms(gc, epsilon, sigma)
     below = g - gc  # < 0 only under g_min
     return v + dv * below + 0.5 * d2v * below**2, dv + d2v * below, d2v
+
+
+def lj93_derivative(g, epsilon: float, sigma: float, a0: float, order: int):
+    """V_LJ' (``order=1``) or V_LJ'' (``order=2``) of :func:`lj93_with_core`, only that one.
+
+    The solvers' hot path (the pressure or the curvature on the sites in the core):
+    :func:`lj93_with_core` computes all three terms. The quadratic continuation below
+    ``CORE_FRACTION * a0`` has V'' constant and V' linear there.
+    """
+    xp = array_namespace(g)
+    g_min = CORE_FRACTION * a0
+    gc = xp.maximum(g, g_min)
+    inv = 1.0 / gc
+    s3 = sigma * inv
+    s3 = s3 * s3 * s3
+    s9 = s3 * s3 * s3
+    if order == 2:
+        return epsilon * ((180.0 / 15.0) * s9 - 12.0 * s3) * (inv * inv)
+    dv = epsilon * (-(18.0 / 15.0) * s9 + 3.0 * s3) * inv
+    if bool(xp.any(g < g_min)):  # rare: a solver's trial step deep into the core
+        d2v = epsilon * ((180.0 / 15.0) * s9 - 12.0 * s3) * (inv * inv)
+        dv = dv + d2v * (g - gc)
+    return dv

@@ -29,9 +29,18 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+import numpy as np
+
+from .._backend import is_numpy_array
 from .._validate import ParameterError, positive
 from ._base import as_gap
-from ._lj93 import SIGMA_OVER_A0, curvature_at_minimum, lj93_terms, lj93_with_core
+from ._lj93 import (
+    SIGMA_OVER_A0,
+    curvature_at_minimum,
+    lj93_derivative,
+    lj93_terms,
+    lj93_with_core,
+)
 
 __all__ = ["SmoothLJ93"]
 
@@ -163,42 +172,52 @@ class SmoothLJ93:
 
     def pressure(self, gap):
         """p(g) = -V'(g) (pressure; > 0 repulsive)."""
-        # the solvers' hot path: the quartic on every site (zero beyond the cutoff, where
-        # x is clipped to 1), then the 9-3 core only where g < a0
+        # the solvers' hot path: the quartic on every site (zero from the cutoff on,
+        # where 1 - x is clipped to 0), then the 9-3 core only where g < a0
         xp, g = as_gap(gap)
-        dr, w = self.range, self.work_of_adhesion
-        x = self._scaled_distance(xp, g)
-        p = 1.0 - x
-        p *= p
-        p *= x
-        p *= -12.0 * w / dr
+        m = self._remaining_range(xp, g)
+        p = 1.0 - m  # x
+        p *= m
+        p *= m
+        p *= -12.0 * self.work_of_adhesion / self.range
         self._core(xp, g, p, 1, sign=-1.0)
         return p
 
     def curvature(self, gap):
         """V''(g) (pressure / length)."""
         xp, g = as_gap(gap)
-        dr, w = self.range, self.work_of_adhesion
-        x = self._scaled_distance(xp, g)
-        d2v = 1.0 - 3.0 * x
-        x -= 1.0
-        d2v *= x
-        d2v *= -12.0 * w / dr**2
+        m = self._remaining_range(xp, g)
+        d2v = 3.0 * m - 2.0  # 1 - 3x
+        d2v *= m
+        d2v *= 12.0 * self.work_of_adhesion / self.range**2
         self._core(xp, g, d2v, 2, sign=1.0)
         return d2v
 
-    def _scaled_distance(self, xp, g):
-        """x = (g - a0)/Δr clipped to [0, 1], exactly 1 from the cutoff on (a new array)."""
-        x = xp.clip((g - self.equilibrium_distance) / self.range, 0.0, 1.0)
-        # (a0 + Δr - a0)/Δr can round below 1: V, V', V'' must vanish exactly there
-        return xp.where(g < self.cutoff, x, 1.0)
+    def _remaining_range(self, xp, g):
+        """1 - x = (a0 + Δr - g)/Δr clipped to [0, 1] (a new array).
+
+        Exactly 0 from the cutoff on (the sign of a0 + Δr - g is exact, where x = (g -
+        a0)/Δr could round below 1 there): V, V', V'' vanish exactly beyond it.
+        """
+        m = self.cutoff - g
+        m *= 1.0 / self.range
+        if is_numpy_array(m):
+            return np.clip(m, 0.0, 1.0, out=m)
+        return xp.clip(m, 0.0, 1.0)
 
     def _core(self, xp, g, out, derivative, sign):
         """Overwrite ``out`` where g < a0 with ``sign`` times that derivative of the core."""
         core = g < self.equilibrium_distance
-        if xp.any(core):
-            terms = lj93_with_core(g[core], self.epsilon, self.sigma, self.equilibrium_distance)
-            out[core] = sign * terms[derivative]
+        if is_numpy_array(core) and core.ndim == 1:
+            core = np.flatnonzero(core)  # index arrays: cheaper gathers on a part of the band
+            if core.size == 0:
+                return
+        elif not bool(xp.any(core)):
+            return
+        d = lj93_derivative(
+            g[core], self.epsilon, self.sigma, self.equilibrium_distance, derivative
+        )
+        out[core] = sign * d
 
     def classify(self, gap):
         """(repulsive, attractive) masks: g < a0, and a0 < g < a0 + Δr (SPEC §1)."""
