@@ -1,10 +1,19 @@
 """Shared solver operators."""
 
+import math
+
 import numpy as np
 import pytest
 
 import roughcontact as rc
-from roughcontact.solvers._ops import compliance_operator, in_single_precision
+from roughcontact.solvers._ops import (
+    RELIABLE_EVERY,
+    RELIABLE_REACH,
+    ReliableUpdates,
+    compliance_operator,
+    dot,
+    in_single_precision,
+)
 
 
 @pytest.mark.parametrize("thickness", [None, 8.0])
@@ -19,3 +28,44 @@ def test_operator_in_single_precision(thickness):
     assert 1e-10 < np.abs(single - exact).max() / np.abs(exact).max() < 1e-5
     x32 = x.astype(np.float32)  # a float32 computation is left alone
     np.testing.assert_array_equal(green32(x32), green(x32))
+
+
+@pytest.mark.parametrize("n", [7, 8192, 65536, 3 * 8192 + 1001, 257 * 263])
+@pytest.mark.parametrize(
+    "dtypes", [("float64", "float64"), ("float32", "float64"), ("float32",) * 2]
+)
+def test_dot_is_the_float64_inner_product(n, dtypes):
+    # oracle: math.fsum of the products in float64 (correctly rounded), for the row-wise
+    # path (float64, n >= DOT_CHUNK with and without a tail) and the einsum path
+    rng = np.random.default_rng(n)
+    a = rng.standard_normal(n).astype(dtypes[0])
+    b = rng.standard_normal(n).astype(dtypes[1])
+    exact = math.fsum(a.astype(np.float64) * b.astype(np.float64))
+    got = dot(a, b)
+    assert isinstance(got, float)
+    # float64 accumulation: error ~ eps64 x (terms summed in sequence) x sum |a b|, far
+    # below float32 accumulation (~1e-7 sum |a b|)
+    bound = 1e-12 * math.fsum(np.abs(a.astype(np.float64) * b.astype(np.float64)))
+    assert abs(got - exact) <= bound
+
+
+def test_reliable_updates_schedule():
+    # an exact evaluation when the tolerance is met, after a 1000-fold drop unless the
+    # tolerance is within `reach` of the last exact residual, and every
+    # RELIABLE_EVERY iterations; a restart when the exact residual is twice the iterated one
+    default = ReliableUpdates(tol=1e-6)  # reach 0: the drop always gets its evaluation
+    assert default.check(0.5, exact=True) is None
+    assert default.check(1e-4, exact=False) == "refresh"
+    far = ReliableUpdates(tol=1e-10, reach=RELIABLE_REACH)
+    assert far.check(1.0, exact=True) is None
+    assert far.check(2e-3, exact=False) is None
+    assert far.check(1e-3, exact=False) == "refresh"
+    assert far.check(3e-3, exact=True) == "restart"  # drift above twice the iterated 1e-3
+    near = ReliableUpdates(tol=1e-6, reach=RELIABLE_REACH)
+    assert near.check(0.5, exact=True) is None
+    assert near.check(1e-4, exact=False) is None  # 5000-fold drop, tol within 2e-6 of 0.5
+    assert near.check(1e-6, exact=False) == "refresh"
+    assert near.check(1e-6, exact=True) is None
+    for _ in range(RELIABLE_EVERY):
+        near.step()
+    assert near.check(1e-4, exact=False) == "refresh"

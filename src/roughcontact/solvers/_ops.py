@@ -16,6 +16,7 @@ __all__ = [
     "RESUME_PRECONDITIONING",
     "RELIABLE_DROP",
     "RELIABLE_EVERY",
+    "RELIABLE_REACH",
     "ReliableUpdates",
     "StallGuard",
     "StepKind",
@@ -87,6 +88,10 @@ def in_precision(operator, dtype):
     return apply
 
 
+#: Length of the rows a long NumPy inner product is cut into (see :func:`dot`).
+DOT_CHUNK = 8192
+
+
 def dot(a, b) -> float:
     """Euclidean inner product of two flat arrays of one backend, as a Python float.
 
@@ -94,9 +99,17 @@ def dot(a, b) -> float:
     differences of sums over the whole grid, which float32 accumulation would drown.
     """
     if is_numpy_array(a):
-        # einsum: no temporary and no BLAS. np.dot is 5x faster on an idle machine, but
-        # OpenBLAS runs it on all cores and its threads spin after the call: on a shared
-        # 2-core machine that doubled the hard-wall solver's time (FFT threads starved)
+        n = a.shape[0]
+        rows = n - n % DOT_CHUNK
+        if rows and a.dtype == b.dtype == np.float64 and hasattr(np, "vecdot"):
+            # one row of DOT_CHUNK at a time: np.dot/vecdot call OpenBLAS, which runs
+            # a product of more than 10 000 elements on all cores and leaves its threads
+            # spinning after the call (on a shared 2-core machine that doubled the
+            # hard-wall solver's time, its FFT threads starved); below that length it
+            # stays on one thread and is still 2x faster than einsum (256²-1024²)
+            head = np.vecdot(a[:rows].reshape(-1, DOT_CHUNK), b[:rows].reshape(-1, DOT_CHUNK)).sum()
+            return float(head + np.einsum("i,i->", a[rows:], b[rows:]))
+        # einsum: no temporary and no BLAS
         return float(np.einsum("i,i->", a, b, dtype=np.float64))
     xp = array_namespace(a)
     return float(xp.sum(a * b, dtype=xp.float64))
@@ -180,6 +193,13 @@ class StepKind:
 RELIABLE_DROP = 1e-3
 #: ... and at the latest after this many iterations, so that drift can never stall a solve.
 RELIABLE_EVERY = 50
+#: ``ReliableUpdates(tol, reach=RELIABLE_REACH)``: the drop's evaluation is skipped when
+#: the tolerance is within this factor of the residual at the last exact evaluation: the
+#: drift on the way to the tolerance is then at most ~1e-7 / 1e-6 = 10 % of it, so the
+#: exact evaluation at the tolerance suffices (warm-started adhesive steps start 1e5-1e6
+#: above tol 1e-6; their drift measured <= 0.6 % of it, ``benchmarks/adhesive.py`` at
+#: 256²; a larger drift only restarts the conjugate directions).
+RELIABLE_REACH = 1e-6
 
 
 class ReliableUpdates:
@@ -188,7 +208,9 @@ class ReliableUpdates:
     The iterations update a field (``G p - h``, ``K w``) by single-precision increments,
     whose rounding accumulates to ~1e-7 of the distance travelled. Call :meth:`check`
     with every residual: it answers ``"refresh"`` when an exact (float64) evaluation is
-    due (the residual fell by :data:`RELIABLE_DROP` since the last one, or
+    due (the residual fell by :data:`RELIABLE_DROP` since the last one, unless the
+    tolerance is within ``reach`` (0: never; :data:`RELIABLE_REACH` for the smooth
+    solver's warm-started steps) of that one's residual, or
     :data:`RELIABLE_EVERY` iterations passed, or the tolerance is met: convergence is
     only declared on an exact state), and ``"restart"`` on the exact state's residual
     when it exceeds twice the iterated one, i.e. the drift had overtaken the residual
@@ -196,19 +218,19 @@ class ReliableUpdates:
     "reliable updates" of Sleijpen & van der Vorst (Computing 56, 141 (1996)).
     """
 
-    def __init__(self, tol: float):
+    def __init__(self, tol: float, reach: float = 0.0):
         self.tol, self.reliable, self.since, self.iterated = tol, math.inf, 0, math.inf
+        self.reach = reach
 
     def check(self, residual: float, exact: bool) -> str | None:
         if exact:
             drifted = residual > 2.0 * self.iterated
             self.reliable, self.since, self.iterated = residual, 0, math.inf
             return "restart" if drifted else None
-        if (
-            residual <= self.tol
-            or residual <= RELIABLE_DROP * self.reliable
-            or self.since >= RELIABLE_EVERY
-        ):
+        # the tolerance is within reach of the last exact residual: no drop evaluation
+        in_reach = self.reach > 0 and self.tol >= self.reach * self.reliable
+        drop = residual <= RELIABLE_DROP * self.reliable and not in_reach
+        if residual <= self.tol or drop or self.since >= RELIABLE_EVERY:
             self.iterated = residual
             return "refresh"
         return None

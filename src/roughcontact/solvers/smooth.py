@@ -75,6 +75,7 @@ from .._backend import (
 from .._validate import ParameterError
 from ._inplace import Workspace
 from ._ops import (
+    RELIABLE_REACH,
     ReliableUpdates,
     StallGuard,
     check_problem,
@@ -208,7 +209,7 @@ def minimize_energy(
 
     gr = imbalance()
     exact = True  # kw is K w from a fresh float64 convolution (not updated incrementally)
-    reliable = ReliableUpdates(tol)
+    reliable = ReliableUpdates(tol, reach=RELIABLE_REACH)
     stiff = diagonal = None
     directions = False  # whether s, ks hold conjugate directions to build on
     s, ks, z, z_old = (xp.empty_like(gap) for _ in range(4))
@@ -253,8 +254,19 @@ def minimize_energy(
             s, ks = work.negative(s, z), work.negative(ks, kz)
             slope0 = -gz
         gz_old, directions = gz, True
+        # s.K w from the slope, s.gr = s.K w - s.p_int (s has no mean when the mean is
+        # rigid): a dot over the interaction's sites instead of the grid
+        elastic_slope = slope0 + _dot(s if near is None else s[near], p_near)
         alpha, near, p_near = _line_minimum(
-            interaction, gap, s, kw, ks, slope0, with_pressure=True, work=work
+            interaction,
+            gap,
+            s,
+            kw,
+            ks,
+            slope0,
+            with_pressure=True,
+            work=work,
+            elastic_slope=elastic_slope,
         )
         if not math.isfinite(alpha):
             message = f"line search failed at iteration {it}"
@@ -342,7 +354,17 @@ def _precondition(
 
 
 def _line_minimum(
-    interaction, gap, s, kw, ks, slope0, rtol=1e-3, max_eval=60, with_pressure=False, work=None
+    interaction,
+    gap,
+    s,
+    kw,
+    ks,
+    slope0,
+    rtol=1e-3,
+    max_eval=60,
+    with_pressure=False,
+    work=None,
+    elastic_slope=None,
 ):
     """Step ``alpha`` minimising E along ``w + alpha s`` (a root of the directional slope).
 
@@ -352,8 +374,10 @@ def _line_minimum(
     ``with_pressure`` ``(alpha, sites, pressure)``: the interaction pressure at
     ``gap + alpha s`` (the last evaluation, so the caller's gradient needs no evaluation
     of its own) on ``sites`` (see :mod:`._inplace`; None: every site), zero elsewhere.
+    ``elastic_slope``, when the caller has it, is ``s.kw`` (then ``kw`` is not read).
     """
-    c0, c1 = _dot(s, kw), _dot(s, ks)
+    c0 = _dot(s, kw) if elastic_slope is None else elastic_slope
+    c1 = _dot(s, ks)
     work = work or Workspace(gap)
     # sites that can feel the interaction for alpha <= 4; the others only matter beyond
     band = math.isfinite(interaction.cutoff)
