@@ -34,6 +34,7 @@ class Workspace:
         self.xp = array_namespace(like)
         self.inplace = is_numpy_array(like)
         self.tmp = np.empty_like(like) if self.inplace else None
+        self.dense_band = False  # whether the last band held more than 1/8 of the sites
 
     def sites(self, mask):
         """The sites where ``mask`` is true (index array on NumPy, the mask elsewhere)."""
@@ -78,7 +79,17 @@ class Workspace:
         of range ``cutoff`` along ``gap + alpha s`` for ``0 <= alpha <= reach``."""
         if not self.inplace:
             return self.xp.minimum(gap, gap + reach * s) < cutoff
+        if not self.dense_band:
+            # few sites near the cutoff (a short-ranged law): the test on the gap alone
+            # with the largest approach, min(s), is two passes instead of four
+            candidates = np.flatnonzero(gap < cutoff - reach * min(float(s.min()), 0.0))
+            if 4 * candidates.size < gap.size:
+                g, d = gap[candidates], s[candidates]
+                return candidates[np.minimum(g, g + reach * d) < cutoff]
+            self.dense_band = True
         t = np.multiply(s, reach, out=self.tmp)
         t += gap
         np.minimum(t, gap, out=t)
-        return np.flatnonzero(t < cutoff)
+        sites = np.flatnonzero(t < cutoff)
+        self.dense_band = 8 * sites.size > gap.size
+        return sites
