@@ -51,9 +51,12 @@ The vector work around the two convolutions is more than half of an iteration's 
 on a CPU at 256²-512², so it is kept lean: the gap is the iterate (the deflection is
 formed only for an exact ``K w``), the interaction pressure is held only on the line
 search's band of sites that can feel the interaction (zero elsewhere), the
-preconditioner's mean comes from sums it already needs, and on NumPy every full-grid
-update writes into arrays allocated once per solve (:mod:`._inplace`): 1.3-1.5x less
-time per iteration than the same steps with a temporary per expression.
+preconditioner's mean comes from sums it already needs, the line search's elastic slope
+``s.K w`` comes from the directional derivative and the band's pressure, and on NumPy
+every full-grid update writes into arrays allocated once per solve (:mod:`._inplace`):
+1.3-1.5x less time per iteration than the same steps with a temporary per expression.
+The intermediate exact ``K w`` of the reliable updates is skipped when the tolerance is
+within reach of the step's starting residual (:data:`._ops.RELIABLE_REACH`).
 
 Convergence measure (``residual``): the largest force imbalance per unit area,
 ``max |K w - p_int(g)|`` (excluding the uniform mode when it is rigid), divided by the
