@@ -8,7 +8,6 @@ import pytest
 import roughcontact as rc
 from roughcontact.solvers._ops import (
     RELIABLE_EVERY,
-    RELIABLE_REACH,
     ReliableUpdates,
     compliance_operator,
     dot,
@@ -50,22 +49,16 @@ def test_dot_is_the_float64_inner_product(n, dtypes):
 
 
 def test_reliable_updates_schedule():
-    # an exact evaluation when the tolerance is met, after a 1000-fold drop unless the
-    # tolerance is within `reach` of the last exact residual, and every
+    # an exact evaluation when the tolerance is met, after a 1000-fold drop and every
     # RELIABLE_EVERY iterations; a restart when the exact residual is twice the iterated one
-    default = ReliableUpdates(tol=1e-6)  # reach 0: the drop always gets its evaluation
-    assert default.check(0.5, exact=True) is None
-    assert default.check(1e-4, exact=False) == "refresh"
-    far = ReliableUpdates(tol=1e-10, reach=RELIABLE_REACH)
-    assert far.check(1.0, exact=True) is None
-    assert far.check(2e-3, exact=False) is None
-    assert far.check(1e-3, exact=False) == "refresh"
-    assert far.check(3e-3, exact=True) == "restart"  # drift above twice the iterated 1e-3
-    near = ReliableUpdates(tol=1e-6, reach=RELIABLE_REACH)
-    assert near.check(0.5, exact=True) is None
-    assert near.check(1e-4, exact=False) is None  # 5000-fold drop, tol within 2e-6 of 0.5
-    assert near.check(1e-6, exact=False) == "refresh"
-    assert near.check(1e-6, exact=True) is None
+    reliable = ReliableUpdates(tol=1e-10)
+    assert reliable.check(1.0, exact=True) is None
+    assert reliable.check(2e-3, exact=False) is None
+    assert reliable.check(1e-3, exact=False) == "refresh"
+    assert reliable.check(3e-3, exact=True) == "restart"  # drift above twice the iterated 1e-3
+    assert reliable.check(2e-3, exact=False) is None
+    assert reliable.check(1e-10, exact=False) == "refresh"
+    assert reliable.check(1e-10, exact=True) is None
     for _ in range(RELIABLE_EVERY):
-        near.step()
-    assert near.check(1e-4, exact=False) == "refresh"
+        reliable.step()
+    assert reliable.check(1.5e-10, exact=False) == "refresh"  # neither tol nor a drop

@@ -16,7 +16,6 @@ __all__ = [
     "RESUME_PRECONDITIONING",
     "RELIABLE_DROP",
     "RELIABLE_EVERY",
-    "RELIABLE_REACH",
     "ReliableUpdates",
     "StallGuard",
     "StepKind",
@@ -193,13 +192,6 @@ class StepKind:
 RELIABLE_DROP = 1e-3
 #: ... and at the latest after this many iterations, so that drift can never stall a solve.
 RELIABLE_EVERY = 50
-#: ``ReliableUpdates(tol, reach=RELIABLE_REACH)``: the drop's evaluation is skipped when
-#: the tolerance is within this factor of the residual at the last exact evaluation: the
-#: drift on the way to the tolerance is then at most ~1e-7 / 1e-6 = 10 % of it, so the
-#: exact evaluation at the tolerance suffices (warm-started adhesive steps start 1e5-1e6
-#: above tol 1e-6; their drift measured <= 0.6 % of it, ``benchmarks/adhesive.py`` at
-#: 256²; a larger drift only restarts the conjugate directions).
-RELIABLE_REACH = 1e-6
 
 
 class ReliableUpdates:
@@ -208,9 +200,7 @@ class ReliableUpdates:
     The iterations update a field (``G p - h``, ``K w``) by single-precision increments,
     whose rounding accumulates to ~1e-7 of the distance travelled. Call :meth:`check`
     with every residual: it answers ``"refresh"`` when an exact (float64) evaluation is
-    due (the residual fell by :data:`RELIABLE_DROP` since the last one, unless the
-    tolerance is within ``reach`` (0: never; :data:`RELIABLE_REACH` for the smooth
-    solver's warm-started steps) of that one's residual, or
+    due (the residual fell by :data:`RELIABLE_DROP` since the last one, or
     :data:`RELIABLE_EVERY` iterations passed, or the tolerance is met: convergence is
     only declared on an exact state), and ``"restart"`` on the exact state's residual
     when it exceeds twice the iterated one, i.e. the drift had overtaken the residual
@@ -218,18 +208,15 @@ class ReliableUpdates:
     "reliable updates" of Sleijpen & van der Vorst (Computing 56, 141 (1996)).
     """
 
-    def __init__(self, tol: float, reach: float = 0.0):
+    def __init__(self, tol: float):
         self.tol, self.reliable, self.since, self.iterated = tol, math.inf, 0, math.inf
-        self.reach = reach
 
     def check(self, residual: float, exact: bool) -> str | None:
         if exact:
             drifted = residual > 2.0 * self.iterated
             self.reliable, self.since, self.iterated = residual, 0, math.inf
             return "restart" if drifted else None
-        # the tolerance is within reach of the last exact residual: no drop evaluation
-        in_reach = self.reach > 0 and self.tol >= self.reach * self.reliable
-        drop = residual <= RELIABLE_DROP * self.reliable and not in_reach
+        drop = residual <= RELIABLE_DROP * self.reliable
         if residual <= self.tol or drop or self.since >= RELIABLE_EVERY:
             self.iterated = residual
             return "refresh"

@@ -55,8 +55,6 @@ preconditioner's mean comes from sums it already needs, the line search's elasti
 ``s.K w`` comes from the directional derivative and the band's pressure, and on NumPy
 every full-grid update writes into arrays allocated once per solve (:mod:`._inplace`):
 1.3-1.5x less time per iteration than the same steps with a temporary per expression.
-The intermediate exact ``K w`` of the reliable updates is skipped when the tolerance is
-within reach of the step's starting residual (:data:`._ops.RELIABLE_REACH`).
 
 Convergence measure (``residual``): the largest force imbalance per unit area,
 ``max |K w - p_int(g)|`` (excluding the uniform mode when it is rigid), divided by the
@@ -78,7 +76,6 @@ from .._backend import (
 from .._validate import ParameterError
 from ._inplace import Workspace
 from ._ops import (
-    RELIABLE_REACH,
     ReliableUpdates,
     StallGuard,
     check_problem,
@@ -212,7 +209,7 @@ def minimize_energy(
 
     gr = imbalance()
     exact = True  # kw is K w from a fresh float64 convolution (not updated incrementally)
-    reliable = ReliableUpdates(tol, reach=RELIABLE_REACH)
+    reliable = ReliableUpdates(tol)
     stiff = diagonal = None
     directions = False  # whether s, ks hold conjugate directions to build on
     s, ks, z, z_old = (xp.empty_like(gap) for _ in range(4))
