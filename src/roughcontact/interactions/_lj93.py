@@ -22,16 +22,29 @@ def curvature_at_minimum(sigma: float, a0: float) -> float:
     return (2.0 / 15.0) * 90.0 * sigma**9 / a0**11 - 12.0 * sigma**3 / a0**5
 
 
-def lj93_terms(g, epsilon: float, sigma: float):
-    """V_LJ, V_LJ' and V_LJ'' at gaps ``g > 0`` (energy/area, pressure, pressure/length)."""
+def _powers(g, sigma: float):
+    """1/g, (σ/g)³ and (σ/g)⁹."""
     inv = 1.0 / g
     s3 = sigma * inv
     s3 = s3 * s3 * s3  # products, not ** 3: NumPy's pow is 4x slower (solvers' hot path)
-    s9 = s3 * s3 * s3
+    return inv, s3, s3 * s3 * s3
+
+
+def _first(epsilon: float, inv, s3, s9):
+    """V_LJ' from :func:`_powers` (pressure)."""
+    return epsilon * (-(18.0 / 15.0) * s9 + 3.0 * s3) * inv
+
+
+def _second(epsilon: float, inv, s3, s9):
+    """V_LJ'' from :func:`_powers` (pressure / length)."""
+    return epsilon * ((180.0 / 15.0) * s9 - 12.0 * s3) * (inv * inv)
+
+
+def lj93_terms(g, epsilon: float, sigma: float):
+    """V_LJ, V_LJ' and V_LJ'' at gaps ``g > 0`` (energy/area, pressure, pressure/length)."""
+    inv, s3, s9 = _powers(g, sigma)
     v = epsilon * ((2.0 / 15.0) * s9 - s3)
-    dv = epsilon * (-(18.0 / 15.0) * s9 + 3.0 * s3) * inv
-    d2v = epsilon * ((180.0 / 15.0) * s9 - 12.0 * s3) * (inv * inv)
-    return v, dv, d2v
+    return v, _first(epsilon, inv, s3, s9), _second(epsilon, inv, s3, s9)
 
 
 def lj93_with_core(g, epsilon: float, sigma: float, a0: float):
@@ -53,14 +66,10 @@ def lj93_derivative(g, epsilon: float, sigma: float, a0: float, order: int):
     xp = array_namespace(g)
     g_min = CORE_FRACTION * a0
     gc = xp.maximum(g, g_min)
-    inv = 1.0 / gc
-    s3 = sigma * inv
-    s3 = s3 * s3 * s3
-    s9 = s3 * s3 * s3
+    powers = _powers(gc, sigma)
     if order == 2:
-        return epsilon * ((180.0 / 15.0) * s9 - 12.0 * s3) * (inv * inv)
-    dv = epsilon * (-(18.0 / 15.0) * s9 + 3.0 * s3) * inv
+        return _second(epsilon, *powers)
+    dv = _first(epsilon, *powers)
     if bool(xp.any(g < g_min)):  # rare: a solver's trial step deep into the core
-        d2v = epsilon * ((180.0 / 15.0) * s9 - 12.0 * s3) * (inv * inv)
-        dv = dv + d2v * (g - gc)
+        dv = dv + _second(epsilon, *powers) * (g - gc)
     return dv
