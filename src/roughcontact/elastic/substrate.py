@@ -20,7 +20,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .._backend import array_device, array_namespace, irfft2, is_numpy_array, rfft2
+from .._backend import array_device, array_namespace, convolve, is_numpy_array, rfft2
 from .._validate import ParameterError, in_range, positive, shape2d
 from .stiffness import (
     bonded_layer_stiffness,
@@ -160,7 +160,7 @@ class Substrate:
         """
         self._check("pressure", pressure)
         _, c = self._arrays(pressure)
-        return irfft2(rfft2(pressure) * c, self.shape)
+        return convolve(pressure, c)
 
     def pressure(self, deflection):
         r"""Pressure (pressure units) that produces a deflection field (length).
@@ -171,7 +171,7 @@ class Substrate:
         """
         self._check("deflection", deflection)
         k, _ = self._arrays(deflection)
-        return irfft2(rfft2(deflection) * k, self.shape)
+        return convolve(deflection, k)
 
     def energy(self, deflection) -> float:
         r"""Elastic energy :math:`E_{el} = \tfrac12 a_0^2 \sum_x p(x) w(x)`.

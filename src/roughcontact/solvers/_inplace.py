@@ -48,6 +48,10 @@ class Workspace:
             y += a * x
         return y
 
+    def difference(self, x, y):
+        """``x - y``, on NumPy in the scratch array (valid until the next helper call)."""
+        return np.subtract(x, y, out=self.tmp) if self.inplace else x - y
+
     def scale_sub(self, y, beta: float, x):
         """``y = beta * y - x`` in place (``x`` may be of lower precision); returns ``y``."""
         y *= beta

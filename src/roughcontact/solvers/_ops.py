@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from .._backend import array_namespace, dtype_name, irfft2, is_numpy_array, rfft2, to_device
+from .._backend import array_namespace, convolve, dtype_name, is_numpy_array, to_device
 from .._validate import ParameterError, heights2d
 
 __all__ = [
@@ -35,13 +35,26 @@ __all__ = [
 
 
 def _fourier_operator(substrate, which: int):
+    """``apply(x_flat, out=None)``: a flat field through one of the substrate's Fourier
+    multipliers. On NumPy it keeps one spectrum array per dtype for all its calls (so an
+    operator is made per solve and not shared between threads); ``out`` (NumPy, flat,
+    x's dtype) receives the result."""
     shape = substrate.shape
+    spectra = {}
 
-    def apply(x_flat):
+    def apply(x_flat, out=None):
         xp = array_namespace(x_flat)
-        xq = rfft2(xp.reshape(x_flat, shape))
-        xq *= substrate._arrays(x_flat)[which]  # cached per backend
-        return xp.reshape(irfft2(xq, shape, overwrite_x=True), (-1,))
+        kernel = substrate._arrays(x_flat)[which]  # cached per backend and dtype
+        x = xp.reshape(x_flat, shape)
+        if not is_numpy_array(x_flat):
+            return xp.reshape(convolve(x, kernel), (-1,))
+        spectrum = spectra.get(x.dtype)
+        if spectrum is None:
+            spectrum = spectra[x.dtype] = np.empty(
+                kernel.shape, dtype=np.result_type(x.dtype, np.complex64)
+            )
+        out = None if out is None else out.reshape(shape)
+        return convolve(x, kernel, spectrum=spectrum, out=out).reshape(-1)
 
     return apply
 
@@ -80,9 +93,9 @@ def in_precision(operator, dtype):
     back only what it needs (a float32 result is a smaller array to read).
     """
 
-    def apply(x):
+    def apply(x, out=None):
         xp = array_namespace(x)
-        return operator(x if x.dtype == dtype else xp.astype(x, dtype))
+        return operator(x if x.dtype == dtype else xp.astype(x, dtype), out=out)
 
     return apply
 

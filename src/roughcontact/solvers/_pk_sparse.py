@@ -64,6 +64,7 @@ def iterate_sparse(p, pb, substrate):
     idx = np.flatnonzero(p > 0)
     # full-grid buffer for what is convolved in fast precision (zero off the sites used)
     tb = np.zeros(n, dtype=pb.fast_dtype)
+    fast_result = np.empty_like(tb)  # receives each fast convolution, used before the next
     work = np.empty_like(hf)  # full-grid scratch in the heights' precision
     t_c = None
     delta, g_old = False, 1.0
@@ -76,7 +77,7 @@ def iterate_sparse(p, pb, substrate):
 
     def fast(op, sites, values):
         tb[sites] = values
-        out = op(tb)
+        out = op(tb, out=fast_result)
         tb[sites] = 0.0
         return out
 
@@ -87,7 +88,7 @@ def iterate_sparse(p, pb, substrate):
                 residual, converged, message = 0.0, True, "no contact"
                 break
             p[ov] = -(s[ov] + offset) * winkler
-            s, idx, exact, delta = _subtract_heights(conv(p), hf), ov, True, False
+            s, idx, exact, delta = _subtract_heights(conv(p, out=s), hf), ov, True, False
             # if a preconditioned step lost all contact, plain steps until the residual
             # is well below where it was: this restart must not repeat the same path
             kind.lost_contact(residual)
@@ -100,7 +101,7 @@ def iterate_sparse(p, pb, substrate):
         viol = -float((s[out] + d).min()) if out.size else 0.0
         residual = max(float(np.abs(g_c).max()), viol) / scale
         if (update := reliable.check(residual, exact)) == "refresh":
-            s, exact = _subtract_heights(conv(p), hf), True
+            s, exact = _subtract_heights(conv(p, out=s), hf), True
             continue
         if update == "restart":
             delta = False
@@ -180,7 +181,7 @@ def iterate_sparse(p, pb, substrate):
                 if not total > 0:  # everything was clipped: restart from uniform pressure
                     p[:], idx, delta = target / n, np.arange(n), False
                     kind.lost_contact(residual)  # (as above)
-                    s, exact = _subtract_heights(conv(p), hf), True
+                    s, exact = _subtract_heights(conv(p, out=s), hf), True
                 elif total != target:  # back to the load: s = lam (u + G c) - h
                     lam = target / total
                     p[idx] *= lam

@@ -189,6 +189,7 @@ def minimize_energy(
     work = Workspace(gap)
     # float32 copies of what the single-precision convolutions take (module docstring)
     fast = xp.empty(n, dtype=xp.float32, device=array_device(h))
+    fast_result = xp.empty_like(fast) if work.inplace else None  # their results (NumPy)
     # the interaction pressure is zero beyond its cutoff: kept as its values p_near on
     # the sites `near` (None: every site) where it can be nonzero
     cutoff = interaction.cutoff
@@ -222,7 +223,8 @@ def minimize_energy(
             message = f"non-finite state at iteration {it} (check inputs and the interaction)"
             break
         if (update := reliable.check(residual, exact)) == "refresh":
-            kw, exact = elastic_pressure(gap - base), True
+            w = work.difference(gap, base)  # in the scratch array, consumed at once
+            kw, exact = elastic_pressure(w, out=kw if work.inplace else None), True
             gr = imbalance()
             continue
         if update == "restart":
@@ -240,8 +242,9 @@ def minimize_energy(
             stiff, diagonal = _stiff_sites(interaction, gap, self_stiffness, work)
         z_old, z = z, z_old  # z_old is the previous z; its array is reused for the new z
         z, kz = _precondition(
-            gr, stiff, diagonal, compliance, elastic_pressure, rigid, out=z, work=work, fast=fast
-        )
+            gr, stiff, diagonal, compliance, elastic_pressure, rigid,
+            out=z, work=work, fast=fast, result=fast_result,
+        )  # fmt: skip
         gz = _dot(gr, z)
         beta = 0.0 if restart else max(0.0, (gz - _dot(gr, z_old)) / gz_old)  # PR+
         if beta > 0:  # in place: s = -z + beta s, ks = -K z + beta ks
@@ -323,7 +326,17 @@ def _stiff_sites(interaction, gap, self_stiffness, work=None):
 
 
 def _precondition(
-    gr, stiff, diagonal, compliance, elastic_pressure, rigid, *, out=None, work=None, fast=None
+    gr,
+    stiff,
+    diagonal,
+    compliance,
+    elastic_pressure,
+    rigid,
+    *,
+    out=None,
+    work=None,
+    fast=None,
+    result=None,
 ):
     """Block-preconditioned gradient ``z`` and its elastic pressure ``K z``.
 
@@ -333,7 +346,8 @@ def _precondition(
     of the grid's size) both convolutions run in single precision: the Green's-function
     block only steers the search direction, and ``K z`` (then returned in float32) only
     updates the elastic pressure incrementally (see the module docstring). ``out``
-    receives ``z`` where the backend allows.
+    receives ``z`` where the backend allows; ``result`` (NumPy, float32, with ``fast``)
+    receives both convolutions, one after the other (``K z`` is returned in it).
     """
     work = work or Workspace(gr)
     xp = work.xp
@@ -343,14 +357,14 @@ def _precondition(
         return compliance(gr), gr
     soft = work.cast(fast, gr) if fast is not None else xp.asarray(gr, copy=True)
     soft[stiff] = 0.0
-    soft_block = compliance(soft)
+    soft_block = compliance(soft, out=result)
     z_stiff = gr[stiff] * diagonal
     shift = 0.0
     if rigid:  # the mean of z, without a pass of its own
         shift = (total(soft_block) - total(soft_block[stiff]) + total(z_stiff)) / gr.shape[0]
     z = work.shifted(out if out is not None else xp.empty_like(gr), soft_block, shift)
     z[stiff] = z_stiff - shift
-    return z, elastic_pressure(work.cast(fast, z) if fast is not None else z)
+    return z, elastic_pressure(work.cast(fast, z) if fast is not None else z, out=result)
 
 
 def _line_minimum(
