@@ -13,8 +13,8 @@ import contextlib
 import functools
 import os
 
+import array_api_compat
 import numpy as np
-from array_api_compat import array_namespace, is_numpy_array
 from array_api_compat import device as array_device
 
 from ._validate import ParameterError
@@ -35,6 +35,25 @@ __all__ = [
     "to_device",
     "to_numpy",
 ]
+
+
+def array_namespace(*xs, **kwargs):
+    """:func:`array_api_compat.array_namespace`, answered at once for one NumPy array.
+
+    The solvers ask it several times per iteration; the shortcut gives the same module
+    (``array_api_compat.numpy``) in a tenth of the time.
+    """
+    if len(xs) == 1 and not kwargs and type(xs[0]) is np.ndarray:
+        return _NUMPY_NAMESPACE
+    return array_api_compat.array_namespace(*xs, **kwargs)
+
+
+def is_numpy_array(x) -> bool:
+    """:func:`array_api_compat.is_numpy_array`, answered at once for a plain ndarray."""
+    return type(x) is np.ndarray or array_api_compat.is_numpy_array(x)
+
+
+_NUMPY_NAMESPACE = array_api_compat.array_namespace(np.empty(0))
 
 #: Floating-point precisions the core computes in (float64 is the default).
 DTYPES = ("float64", "float32")

@@ -135,3 +135,24 @@ def test_inverse_fft_one_axis_at_a_time_is_scipys(shape, dtype):
         np.testing.assert_array_equal(got, ref)
     np.testing.assert_allclose(got, ref, atol=20 * np.finfo(dtype).eps * np.abs(ref).max())
     np.testing.assert_allclose(got, x, atol=20 * np.finfo(dtype).eps * np.abs(x).max())
+
+
+def test_namespace_shortcuts_agree_with_array_api_compat():
+    # the shortcut for plain ndarrays must answer what array_api_compat answers
+    import array_api_compat
+    import array_api_strict
+
+    from roughcontact import _backend
+
+    cases = [
+        np.zeros(3),
+        np.zeros((2, 2), dtype=np.float32),
+        np.float64(1.0),
+        np.ma.masked_array([1.0, 2.0]),
+        array_api_strict.asarray([1.0, 2.0]),
+    ]
+    for x in cases:
+        assert _backend.array_namespace(x) is array_api_compat.array_namespace(x)
+        assert _backend.is_numpy_array(x) == array_api_compat.is_numpy_array(x)
+    a, b = np.zeros(2), np.ones(2)
+    assert _backend.array_namespace(a, b) is array_api_compat.array_namespace(a, b)
