@@ -53,7 +53,8 @@ class _RollKernel:
 def iterate_dense(p, pb):
     """Iterate from pressure ``p`` on the problem ``pb``; see :func:`._pk_sparse.iterate_sparse`.
 
-    Returns ``(p, iterations, residual, converged, message)``.
+    Returns ``(p, deflection, iterations, residual, converged, message)`` (deflection
+    None unless the last state is an exact evaluation).
     """
     xp = array_namespace(p)
     hf, conv, target, offset = pb.hf, pb.conv, pb.target, pb.offset
@@ -169,4 +170,4 @@ def iterate_dense(p, pb):
         if pb.callback is not None and pb.callback(it, residual):
             message = "stopped by callback"
             break
-    return p, it, residual, converged, message
+    return p, (s + hf if exact else None), it, residual, converged, message

@@ -11,7 +11,7 @@ import math
 
 import numpy as np
 
-from .._backend import dtype_name
+from .._backend import dtype_name, irfft2
 from ._ops import (
     JOINING_KEEPS_DIRECTIONS,
     POINT_CORRECTIONS,
@@ -31,17 +31,24 @@ def _subtract_heights(u, hf):
 
 
 class _PointKernel:
-    """Response of the substrate to unit point forces, added in real space."""
+    """Response of the substrate to unit point forces, added in real space.
 
-    def __init__(self, substrate, conv, dtype):
-        n = substrate.shape[0] * substrate.shape[1]
-        unit = np.zeros(n, dtype=dtype)
-        unit[0] = 1.0
-        self.g0 = conv(unit).reshape(substrate.shape)
-        self.shape = substrate.shape
+    The response to a unit force at the origin is the inverse FFT of the compliance
+    multipliers (the FFT of the unit force is exactly 1): half a convolution, made on
+    the first :meth:`add` (many solves never need it).
+    """
+
+    def __init__(self, substrate, dtype):
+        self.substrate, self.dtype, self.shape = substrate, dtype, substrate.shape
+        self.g0 = None
 
     def add(self, s_flat, sites, coeffs):
         """s += sum_j coeffs[j] * G(x - x_j), periodic."""
+        if self.g0 is None:
+            compliance = self.substrate._arrays(np.empty(0, dtype=self.dtype))[1]
+            self.g0 = irfft2(
+                compliance.astype(np.result_type(self.dtype, np.complex64)), self.shape
+            )
         nx, ny = self.shape
         s2, g0 = s_flat.reshape(self.shape), self.g0
         for site, c in zip(sites.tolist(), coeffs.tolist(), strict=True):
@@ -55,11 +62,13 @@ class _PointKernel:
 def iterate_sparse(p, pb, substrate):
     """Iterate from pressure ``p`` on the problem ``pb``; see :mod:`.polonsky_keer`.
 
-    Returns ``(p, iterations, residual, converged, message)``.
+    Returns ``(p, deflection, iterations, residual, converged, message)``; the deflection
+    ``G p`` when the last state is an exact evaluation (always after convergence), else
+    None.
     """
     hf, conv, target, offset, tol = pb.hf, pb.conv, pb.target, pb.offset, pb.tol
     n = hf.size
-    kernel = _PointKernel(substrate, conv, hf.dtype)
+    kernel = _PointKernel(substrate, hf.dtype)
     s = _subtract_heights(conv(p), hf)  # s = u - h, so that the gap is s + d
     idx = np.flatnonzero(p > 0)
     # full-grid buffer for what is convolved in fast precision (zero off the sites used)
@@ -194,4 +203,4 @@ def iterate_sparse(p, pb, substrate):
             message = f"non-finite pressure at iteration {it}"
             break
 
-    return p, it, residual, converged, message
+    return p, (s + hf if exact else None), it, residual, converged, message

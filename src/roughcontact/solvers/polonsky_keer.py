@@ -263,10 +263,11 @@ def polonsky_keer(
         callback=callback,
     )
     if is_numpy_array(h):
-        p, it, residual, converged, message = iterate_sparse(p, problem, substrate)
+        p, u, it, residual, converged, message = iterate_sparse(p, problem, substrate)
     else:
-        p, it, residual, converged, message = iterate_dense(p, problem)
-    u = conv(p)
+        p, u, it, residual, converged, message = iterate_dense(p, problem)
+    if u is None:  # the last state was updated incrementally: evaluate it exactly
+        u = conv(p)
     c = p > 0
     if load is not None and bool(xp.any(c)):
         d = -float(xp.sum(xp.where(c, u - hf, 0.0))) / float(xp.sum(xp.astype(c, h.dtype)))
