@@ -62,3 +62,43 @@ def test_reliable_updates_schedule():
     for _ in range(RELIABLE_EVERY):
         reliable.step()
     assert reliable.check(1.5e-10, exact=False) == "refresh"  # neither tol nor a drop
+
+
+def test_anderson_bjorck_keeps_a_bracket():
+    from roughcontact.solvers._ops import anderson_bjorck
+
+    f = lambda x: x**3 - 1e-3  # noqa: E731
+    a, b = 0.0, 1.0
+    f_a, f_b = f(a), f(b)
+    for x in (0.5, 0.2, 0.05, 0.12, 0.09, 0.101):
+        a, f_a, b, f_b = anderson_bjorck(a, f_a, b, f_b, x, f(x))
+        assert b == x and (f_a > 0) != (f_b > 0)
+        assert min(a, b) <= 0.1 <= max(a, b)
+
+
+@pytest.mark.parametrize(
+    "f, a, b, root",
+    [
+        (lambda x: x**3 - 1e-3, 0.0, 1.0, 0.1),
+        (lambda x: math.exp(8.0 * x) - 2.0, 0.0, 1.0, math.log(2.0) / 8.0),
+        (lambda x: math.tan(x) - 1.0, 0.0, 1.5, math.pi / 4),
+        (lambda x: math.expm1(60.0 * x) - 1.0, 0.0, 4.0, math.log(2.0) / 60.0),  # f(b) ~ 1e104
+        (lambda x: 1.0 - math.exp(-40.0 * (x - 0.3)), 0.0, 2.0, 0.3),
+    ],
+)
+def test_bracketed_root_against_closed_forms(f, a, b, root):
+    from roughcontact.solvers._ops import bracketed_root
+
+    calls = []
+
+    def counted(x):
+        calls.append(x)
+        return f(x)
+
+    # stop, as the line search does, at a fraction of |f| at the ends (Illinois' regula falsi
+    # needs 13, 14, 10, > 60 and 32 evaluations for these; this 15, 13, 7, 28 and 12)
+    tol = 1e-6 * min(abs(f(a)), abs(f(b)))
+    x, evaluations = bracketed_root(counted, a, f(a), b, f(b), lambda fx: abs(fx) <= tol, 60)
+    assert evaluations == len(calls) <= 30
+    assert abs(f(x)) <= tol
+    assert x == pytest.approx(root, rel=1e-5)

@@ -1,5 +1,7 @@
 """Smooth-interaction solver: force balance, energy bookkeeping, limits, paths."""
 
+import math
+
 import numpy as np
 import pytest
 
@@ -215,3 +217,45 @@ def test_single_precision_convolutions_reach_float64_accuracy(system, periodic_o
     assert res.repulsive_area > 0.01
     p_int = law.pressure(res.gap)
     np.testing.assert_allclose(sub.pressure(res.deflection), p_int - p_int.mean(), atol=3e-12)
+
+
+class _SteepCore:
+    """p(g) = exp(stiffness (1 - g)): a repulsion whose force spans many decades."""
+
+    cutoff = math.inf
+
+    def __init__(self, stiffness):
+        self.stiffness, self.calls = stiffness, 0
+
+    def pressure(self, gap):
+        self.calls += 1
+        return np.exp(self.stiffness * (1.0 - gap))
+
+    def curvature(self, gap):
+        return -self.stiffness * self.pressure(gap)
+
+
+@pytest.mark.parametrize("stiffness", [2.0, 30.0, 60.0])
+def test_line_search_meets_its_tolerance_in_few_evaluations(stiffness):
+    # phi'(alpha) = c0 + alpha c1 - s.p(gap + alpha s) along an approach (s < 0) onto a
+    # steep core: the Newton guess from alpha = 0 lands where phi' is 1e10x larger, and
+    # plain regula falsi then crawls; the bisection safeguard must bound the evaluations
+    from roughcontact.solvers.smooth import _line_minimum
+
+    rng = np.random.default_rng(4)
+    gap = rng.uniform(1.5, 3.0, 200)
+    s = -rng.uniform(0.5, 1.0, 200)
+    ks = 0.01 * s  # a weak elastic term: c1 = s.ks > 0
+    kw = np.zeros(200)
+    law = _SteepCore(stiffness)
+    slope0 = -float(s @ law.pressure(gap)) - 50.0  # phi'(0) < 0: descent
+    kw[:] = -50.0 / float(s @ s) * s  # c0 = s.kw = -50
+    law.calls = 0
+    alpha = _line_minimum(law, gap, s, kw, ks, slope0, rtol=1e-3)
+
+    def phi_slope(a):
+        return float(s @ kw) + a * float(s @ ks) - float(s @ law.pressure(gap + a * s))
+
+    assert math.isfinite(alpha) and alpha > 0
+    assert abs(phi_slope(alpha)) <= 1e-3 * abs(slope0)
+    assert law.calls <= 30  # regula falsi with Illinois: 60 without meeting the tolerance

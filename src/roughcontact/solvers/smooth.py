@@ -78,10 +78,9 @@ from ._inplace import Workspace
 from ._ops import (
     ReliableUpdates,
     StallGuard,
+    bracketed_root,
     check_problem,
     compliance_operator,
-    false_position,
-    illinois,
     stiffness_operator,
     stopping,
     total,
@@ -383,7 +382,8 @@ def _line_minimum(
     """Step ``alpha`` minimising E along ``w + alpha s`` (a root of the directional slope).
 
     phi'(alpha) = s.(kw + alpha ks) - s.p_int(gap + alpha s); the elastic part is linear
-    in alpha. Bracket a sign change, then safeguarded secant (Illinois) steps until
+    in alpha. Bracket a sign change, then regula falsi with Anderson-Björck updates and
+    bisection safeguards (:func:`._ops.bracketed_root`) until
     |phi'| <= rtol |phi'(0)|. Returns ``alpha`` (NaN if no bracket was found), and with
     ``with_pressure`` ``(alpha, sites, pressure)``: the interaction pressure at
     ``gap + alpha s`` (the last evaluation, so the caller's gradient needs no evaluation
@@ -433,13 +433,7 @@ def _line_minimum(
         n_eval += 1
     if f_hi < 0:
         return result(math.nan)
-    side = 0
-    alpha = hi
-    while n_eval < max_eval:
-        alpha = false_position(lo, f_lo, hi, f_hi)
-        f = slope(alpha)
-        n_eval += 1
-        if abs(f) <= rtol * abs(slope0):
-            return result(alpha)
-        lo, f_lo, hi, f_hi, side = illinois(lo, f_lo, hi, f_hi, alpha, f, side)
+    alpha, _ = bracketed_root(
+        slope, lo, f_lo, hi, f_hi, lambda f: abs(f) <= rtol * abs(slope0), max_eval - n_eval
+    )
     return result(alpha)
