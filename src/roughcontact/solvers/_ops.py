@@ -104,6 +104,7 @@ def in_precision(operator, dtype):
 
 #: Length of the rows a long NumPy inner product is cut into (see :func:`dot`).
 DOT_CHUNK = 8192
+_HAS_VECDOT = hasattr(np, "vecdot")  # numpy >= 2
 
 
 def dot(a, b) -> float:
@@ -115,13 +116,15 @@ def dot(a, b) -> float:
     if is_numpy_array(a):
         n = a.shape[0]
         rows = n - n % DOT_CHUNK
-        if rows and a.dtype == b.dtype == np.float64 and hasattr(np, "vecdot"):
+        if rows and a.dtype == b.dtype == np.float64 and _HAS_VECDOT:
             # one row of DOT_CHUNK at a time: np.dot/vecdot call OpenBLAS, which runs
             # a product of more than 10 000 elements on all cores and leaves its threads
             # spinning after the call (on a shared 2-core machine that doubled the
             # hard-wall solver's time, its FFT threads starved); below that length it
             # stays on one thread and is still 2x faster than einsum (256²-1024²)
             head = np.vecdot(a[:rows].reshape(-1, DOT_CHUNK), b[:rows].reshape(-1, DOT_CHUNK)).sum()
+            if rows == n:  # power-of-two grids: no tail (an empty einsum costs a few us)
+                return float(head)
             return float(head + np.einsum("i,i->", a[rows:], b[rows:]))
         # einsum: no temporary and no BLAS
         return float(np.einsum("i,i->", a, b, dtype=np.float64))
