@@ -259,3 +259,21 @@ def test_line_search_meets_its_tolerance_in_few_evaluations(stiffness):
     assert math.isfinite(alpha) and alpha > 0
     assert abs(phi_slope(alpha)) <= 1e-3 * abs(slope0)
     assert law.calls <= 30  # regula falsi with Illinois: 60 without meeting the tolerance
+
+
+@pytest.mark.parametrize("overlap", [False, True])
+def test_background_elastic_pressure_takes_the_same_steps(system, overlap, monkeypatch):
+    # K z on the background thread while the line search selects its band: the same
+    # operations in the same order, so the same iterations and bit-identical fields
+    import roughcontact.solvers.smooth as smooth
+
+    h, sub = system
+    law = SmoothLJ93(contact_modulus=1.0, pixel_size=1.0, range=0.3)
+    offset = float(h.max()) - 0.5
+    monkeypatch.setattr(smooth, "overlaps_fft", lambda size: False)
+    ref = rc.solve(h, sub, law, offset=offset, tol=1e-9)
+    monkeypatch.setattr(smooth, "overlaps_fft", lambda size: overlap)
+    got = rc.solve(h, sub, law, offset=offset, tol=1e-9)
+    assert ref.converged and got.iterations == ref.iterations
+    np.testing.assert_array_equal(got.deflection, ref.deflection)
+    np.testing.assert_array_equal(got.pressure, ref.pressure)

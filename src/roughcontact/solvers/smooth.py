@@ -63,6 +63,7 @@ contact modulus. Everything else in SPEC §1 conventions.
 
 from __future__ import annotations
 
+import functools
 import math
 import time
 
@@ -71,6 +72,8 @@ from .._backend import (
     array_namespace,
     computes_on_heights_device,
     dtype_name,
+    in_background,
+    overlaps_fft,
     to_numpy,
 )
 from .._validate import ParameterError
@@ -196,6 +199,8 @@ def minimize_energy(
     # float32 copies of what the single-precision convolutions take (module docstring)
     fast = xp.empty(n, dtype=xp.float32, device=array_device(h))
     fast_result = xp.empty_like(fast) if work.inplace else None  # their results (NumPy)
+    # K z on the second core while the line search selects its band (NumPy, 1-thread FFTs)
+    overlap = work.inplace and overlaps_fft(n)
     # the interaction pressure is zero beyond its cutoff: kept as its values p_near on
     # the sites `near` (None: every site) where it can be nonzero
     cutoff = interaction.cutoff
@@ -249,20 +254,20 @@ def minimize_energy(
         z_old, z = z, z_old  # z_old is the previous z; its array is reused for the new z
         z, kz = _precondition(
             gr, stiff, diagonal, compliance, elastic_pressure, rigid,
-            out=z, work=work, fast=fast, result=fast_result,
+            out=z, work=work, fast=fast, result=fast_result, background=overlap,
         )  # fmt: skip
         gz = _dot(gr, z)
         beta = 0.0 if restart else max(0.0, (gz - _dot(gr, z_old)) / gz_old)  # PR+
-        if beta > 0:  # in place: s = -z + beta s, ks = -K z + beta ks
-            work.scale_sub(s, beta, z)
-            work.scale_sub(ks, beta, kz)
-        else:
-            s, ks = work.negative(s, z), work.negative(ks, kz)
+        # s = -z + beta s (in place), and below ks = K s = -K z + beta ks
+        s = work.scale_sub(s, beta, z) if beta > 0 else work.negative(s, z)
         slope0 = _dot(gr, s)
         if slope0 >= 0:  # not a descent direction: restart along the preconditioned -gr
-            s, ks = work.negative(s, z), work.negative(ks, kz)
-            slope0 = -gz
+            s, slope0, beta = work.negative(s, z), -gz, 0.0
         gz_old, directions = gz, True
+        if callable(kz):  # K z still on the background thread: ks when the line search needs it
+            ks_of_s = functools.partial(_direction_stiffness, work, ks, beta, kz)
+        else:
+            ks = ks_of_s = _direction_stiffness(work, ks, beta, kz)
         # s.K w from the slope, s.gr = s.K w - s.p_int (s has no mean when the mean is
         # rigid): a dot over the interaction's sites instead of the grid
         elastic_slope = slope0 + _dot(s if near is None else s[near], p_near)
@@ -271,7 +276,7 @@ def minimize_energy(
             gap,
             s,
             kw,
-            ks,
+            ks_of_s,
             slope0,
             rtol=LINE_SEARCH_RTOL,
             with_pressure=True,
@@ -332,6 +337,13 @@ def _stiff_sites(interaction, gap, self_stiffness, work=None):
     return sites, diagonal
 
 
+def _direction_stiffness(work, ks, beta, kz):
+    """``K s`` for ``s = -z + beta s_old``: ``-K z + beta ks`` (in place on NumPy). ``kz``
+    may be a function that waits for ``K z``."""
+    kz = kz() if callable(kz) else kz
+    return work.scale_sub(ks, beta, kz) if beta > 0 else work.negative(ks, kz)
+
+
 def _precondition(
     gr,
     stiff,
@@ -344,6 +356,7 @@ def _precondition(
     work=None,
     fast=None,
     result=None,
+    background=False,
 ):
     """Block-preconditioned gradient ``z`` and its elastic pressure ``K z``.
 
@@ -354,7 +367,9 @@ def _precondition(
     block only steers the search direction, and ``K z`` (then returned in float32) only
     updates the elastic pressure incrementally (see the module docstring). ``out``
     receives ``z`` where the backend allows; ``result`` (NumPy, float32, with ``fast``)
-    receives both convolutions, one after the other (``K z`` is returned in it).
+    receives both convolutions, one after the other (``K z`` is returned in it). With
+    ``background`` (NumPy, with ``fast``) ``K z`` is computed on the background thread
+    and a function of no arguments that waits for it is returned in its place.
     """
     work = work or Workspace(gr)
     xp = work.xp
@@ -371,7 +386,10 @@ def _precondition(
         shift = (total(soft_block) - total(soft_block[stiff]) + total(z_stiff)) / gr.shape[0]
     z = work.shifted(out if out is not None else xp.empty_like(gr), soft_block, shift)
     z[stiff] = z_stiff - shift
-    return z, elastic_pressure(work.cast(fast, z) if fast is not None else z, out=result)
+    z_fast = work.cast(fast, z) if fast is not None else z
+    if background and fast is not None:
+        return z, in_background(elastic_pressure, z_fast, out=result)
+    return z, elastic_pressure(z_fast, out=result)
 
 
 def _line_minimum(
@@ -397,9 +415,10 @@ def _line_minimum(
     ``gap + alpha s`` (the last evaluation, so the caller's gradient needs no evaluation
     of its own) on ``sites`` (see :mod:`._inplace`; None: every site), zero elsewhere.
     ``elastic_slope``, when the caller has it, is ``s.kw`` (then ``kw`` is not read).
+    ``ks`` (``K s``) may be a function of no arguments giving it, called once the band
+    and the curvature at alpha = 0 are done (the caller's ``K z`` may still be running).
     """
     c0 = _dot(s, kw) if elastic_slope is None else elastic_slope
-    c1 = _dot(s, ks)
     work = work or Workspace(gap)
     # sites that can feel the interaction for alpha <= 4; the others only matter beyond
     band = math.isfinite(interaction.cutoff)
@@ -424,8 +443,11 @@ def _line_minimum(
         return alpha, (active if last["band"] else None), last["pressure"]
 
     lo, f_lo = 0.0, slope0
-    # Newton guess with the curvature at alpha = 0
-    curv = c1 + _dot(sa * sa, interaction.curvature(ga))
+    # Newton guess with the curvature at alpha = 0 (ks is asked for last: the caller may
+    # still be computing it)
+    curv = _dot(sa * sa, interaction.curvature(ga))
+    c1 = _dot(s, ks() if callable(ks) else ks)
+    curv += c1
     hi = -slope0 / curv if curv > 0 else 1.0
     hi = min(max(hi, 1e-8), 4.0)
     f_hi = slope(hi)
