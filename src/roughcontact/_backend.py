@@ -205,11 +205,13 @@ def in_background(fn, *args, **kwargs):
     """Run ``fn(*args, **kwargs)`` on the one background thread; returns a function of no
     arguments that waits for the result (and re-raises its exception)."""
     global _BACKGROUND
-    if _BACKGROUND is None:
+    # a forked child inherits the executor but not its thread: it makes its own
+    if _BACKGROUND is None or _BACKGROUND[0] != os.getpid():
         from concurrent.futures import ThreadPoolExecutor
 
-        _BACKGROUND = ThreadPoolExecutor(max_workers=1, thread_name_prefix="roughcontact")
-    return _BACKGROUND.submit(fn, *args, **kwargs).result
+        executor = ThreadPoolExecutor(max_workers=1, thread_name_prefix="roughcontact")
+        _BACKGROUND = (os.getpid(), executor)
+    return _BACKGROUND[1].submit(fn, *args, **kwargs).result
 
 
 def to_numpy(x) -> np.ndarray:

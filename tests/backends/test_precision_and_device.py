@@ -5,6 +5,8 @@ Oracle: the float64 solution of the same problem. The single-precision floor
 float32 states must agree with float64 to the accuracy that tolerance implies.
 """
 
+import os
+
 import numpy as np
 import pytest
 
@@ -156,3 +158,20 @@ def test_namespace_shortcuts_agree_with_array_api_compat():
         assert _backend.is_numpy_array(x) == array_api_compat.is_numpy_array(x)
     a, b = np.zeros(2), np.ones(2)
     assert _backend.array_namespace(a, b) is array_api_compat.array_namespace(a, b)
+
+
+@pytest.mark.skipif(not hasattr(os, "fork"), reason="needs os.fork")
+def test_background_thread_works_after_fork():
+    # a forked child inherits the executor object but not its thread
+    from roughcontact import _backend
+
+    assert _backend.in_background(lambda: 2 + 3)() == 5
+    pid = os.fork()
+    if pid == 0:  # child: must compute, not wait forever for a thread it lacks
+        try:
+            code = 0 if _backend.in_background(lambda: 7 * 6)(timeout=20) == 42 else 1
+        except BaseException:  # noqa: BLE001 - any failure is the child's exit code
+            code = 2
+        os._exit(code)
+    _, status = os.waitpid(pid, 0)
+    assert os.WIFEXITED(status) and os.WEXITSTATUS(status) == 0
