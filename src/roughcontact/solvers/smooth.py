@@ -41,11 +41,14 @@ incrementally, so its rounding (~1e-7 of the increment) accumulates to ~1e-7 of 
 distance travelled. ``K w`` is recomputed exactly (float64) when
 :class:`._ops.ReliableUpdates` says (the residual fell 1000-fold since the last exact
 evaluation, 50 iterations passed, or the tolerance is met), so the answer is that of a
-float64 solve (tested down to tol 1e-12). The step length minimises the energy along
-the line to :data:`LINE_SEARCH_RTOL` (cheap because the elastic energy is quadratic
-along the line and the interaction is local). (With the earlier Green's-function
-preconditioner, preconditioned L-BFGS with the same line search took the same number of
-iterations as conjugate gradients.)
+float64 solve (tested down to tol 1e-12). On NumPy grids where the FFT runs on one
+thread (2^17 to 2^19 points) and a second core is free, ``K z`` runs on a background
+thread while the line search selects its band of sites and evaluates the curvature there
+(same operations, same results; :func:`.._backend.overlaps_fft`). The step length
+minimises the energy along the line to :data:`LINE_SEARCH_RTOL` (cheap because the
+elastic energy is quadratic along the line and the interaction is local). (With the
+earlier Green's-function preconditioner, preconditioned L-BFGS with the same line search
+took the same number of iterations as conjugate gradients.)
 
 The vector work around the two convolutions is more than half of an iteration's time
 on a CPU at 256²-512², so it is kept lean: the gap is the iterate (the deflection is
