@@ -6,7 +6,14 @@ import math
 
 import numpy as np
 
-from .._backend import array_namespace, convolve, dtype_name, is_numpy_array, to_device
+from .._backend import (
+    array_namespace,
+    convolve,
+    dtype_name,
+    irfft2,
+    is_numpy_array,
+    to_device,
+)
 from .._validate import ParameterError, heights2d
 
 __all__ = [
@@ -30,6 +37,7 @@ __all__ = [
     "in_precision",
     "in_single_precision",
     "lowest_hard_wall_offset",
+    "point_response",
     "stiffness_operator",
     "stopping",
     "total",
@@ -59,6 +67,18 @@ def _fourier_operator(substrate, which: int):
         return convolve(x, kernel, spectrum=spectrum, out=out).reshape(-1)
 
     return apply
+
+
+def point_response(substrate, like):
+    """Deflection (length, substrate's shape) under a unit pressure on site (0, 0).
+
+    The inverse FFT of the compliance multipliers (the FFT of a unit point force is
+    exactly 1): half a convolution. On ``like``'s backend, device and dtype.
+    """
+    xp = array_namespace(like)
+    complex_dtype = xp.complex64 if like.dtype == xp.float32 else xp.complex128
+    compliance = substrate._arrays(like)[1]
+    return irfft2(xp.astype(compliance, complex_dtype), substrate.shape)
 
 
 def compliance_operator(substrate):

@@ -19,6 +19,7 @@ from ._ops import (
     StallGuard,
     StepKind,
     dot,
+    point_response,
     stopping,
     total,
 )
@@ -31,12 +32,9 @@ def _count(xp, mask) -> int:
 class _RollKernel:
     """Response of the substrate to unit point forces, as rolled copies of one response."""
 
-    def __init__(self, conv, hf, shape):
-        xp = array_namespace(hf)
-        n = hf.shape[0]
-        unit = xp.astype(xp.arange(n, device=array_device(hf)) == 0, hf.dtype)
-        self.g0 = xp.reshape(conv(unit), shape)
-        self.shape = shape
+    def __init__(self, substrate, hf):
+        self.g0 = point_response(substrate, hf)
+        self.shape = substrate.shape
 
     def add(self, s, changed, coeffs):
         """``s + sum_j coeffs[j] G(x - x_j)`` over the sites where ``changed`` (periodic)."""
@@ -50,7 +48,7 @@ class _RollKernel:
         return xp.reshape(s2, (-1,))
 
 
-def iterate_dense(p, pb):
+def iterate_dense(p, pb, substrate):
     """Iterate from pressure ``p`` on the problem ``pb``; see :func:`._pk_sparse.iterate_sparse`.
 
     Returns ``(p, deflection, iterations, residual, converged, message)`` (deflection
@@ -149,7 +147,7 @@ def iterate_dense(p, pb):
             # convolution of the correction
             s = s - tau * r
             if _count(xp, changed) <= POINT_CORRECTIONS:
-                kernel = kernel or _RollKernel(conv, hf, pb.shape)
+                kernel = kernel or _RollKernel(substrate, hf)
                 s = kernel.add(s, changed, correction)
             else:
                 s = s + fast(pb.fast_conv, correction)

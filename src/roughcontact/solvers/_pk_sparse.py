@@ -11,13 +11,14 @@ import math
 
 import numpy as np
 
-from .._backend import dtype_name, irfft2
+from .._backend import dtype_name
 from ._ops import (
     JOINING_KEEPS_DIRECTIONS,
     POINT_CORRECTIONS,
     ReliableUpdates,
     StallGuard,
     StepKind,
+    point_response,
     stopping,
 )
 from ._ops import dot as _dot
@@ -31,12 +32,9 @@ def _subtract_heights(u, hf):
 
 
 class _PointKernel:
-    """Response of the substrate to unit point forces, added in real space.
-
-    The response to a unit force at the origin is the inverse FFT of the compliance
-    multipliers (the FFT of the unit force is exactly 1): half a convolution, made on
-    the first :meth:`add` (many solves never need it).
-    """
+    """Response of the substrate to unit point forces, added in real space (the response
+    to one force, :func:`._ops.point_response`, made on the first :meth:`add`: many solves
+    never need it)."""
 
     def __init__(self, substrate, dtype):
         self.substrate, self.dtype, self.shape = substrate, dtype, substrate.shape
@@ -45,10 +43,7 @@ class _PointKernel:
     def add(self, s_flat, sites, coeffs):
         """s += sum_j coeffs[j] * G(x - x_j), periodic."""
         if self.g0 is None:
-            compliance = self.substrate._arrays(np.empty(0, dtype=self.dtype))[1]
-            self.g0 = irfft2(
-                compliance.astype(np.result_type(self.dtype, np.complex64)), self.shape
-            )
+            self.g0 = point_response(self.substrate, np.empty(0, dtype=self.dtype))
         nx, ny = self.shape
         s2, g0 = s_flat.reshape(self.shape), self.g0
         for site, c in zip(sites.tolist(), coeffs.tolist(), strict=True):

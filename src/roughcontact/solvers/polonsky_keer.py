@@ -265,7 +265,7 @@ def polonsky_keer(
     if is_numpy_array(h):
         p, u, it, residual, converged, message = iterate_sparse(p, problem, substrate)
     else:
-        p, u, it, residual, converged, message = iterate_dense(p, problem)
+        p, u, it, residual, converged, message = iterate_dense(p, problem, substrate)
     if u is None:  # the last state was updated incrementally: evaluate it exactly
         u = conv(p)
     c = p > 0
