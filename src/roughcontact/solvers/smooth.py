@@ -19,10 +19,14 @@ Hessian :math:`H = K + \mathrm{diag}\,V''(g)`:
 With the Green's function alone, the largest eigenvalue of the preconditioned Hessian is
 :math:`\approx 1 + V'' R / E^*` for a contact patch of radius ``R`` (the compliance of a
 large patch is far above that of its sites' springs), so it grows with the patch size
-and hence with the grid (measured at the converged last state of the SPEC §5 approach,
-ℓa = 0.005: 11.6 at 256², 16.0 at 512²). The block preconditioner bounds it (2.2 at both
-sizes, smallest eigenvalue almost unchanged), which halves the iterations at 512² and
-1024² (``benchmarks/adhesive.py``). The stiff set and the diagonal are computed from the
+and hence with the grid (at the last state of the SPEC §5 approach, 256² / 512² / 1024²:
+18.7 / 35.2 / 55.1 for ℓa = 0.005, 31 / 70 / 121 for ℓa = 0.05). The block preconditioner
+cuts it to 3.3-6.0, with the smallest eigenvalue almost unchanged, which halves the
+iterations at 512² and 1024² (``benchmarks/spectrum.py``, ``benchmarks/adhesive.py``).
+That smallest eigenvalue (0.19 / 0.04 / 0.10 and 0.09 / 0.06 / 0.02) belongs to a
+long-wavelength mode of the attractive rings, where V'' < 0 brings the state close to an
+instability; no preconditioner built from ``K`` removes it, and it sets the iteration
+count of the asymptotic phase. The stiff set and the diagonal are computed from the
 current gap at every ``refresh_every``-th iteration (the conjugate directions are kept;
 refreshing every iteration costs more iterations than it saves), and at the first
 iteration of a warm start. From a cold start (no ``initial``) the first
