@@ -25,8 +25,8 @@ cuts it to 3.3-6.0, with the smallest eigenvalue almost unchanged, which halves 
 iterations at 512² and 1024² (``benchmarks/spectrum.py``, ``benchmarks/adhesive.py``).
 That smallest eigenvalue (0.19 / 0.04 / 0.10 and 0.09 / 0.06 / 0.02) belongs to a
 long-wavelength mode of the attractive rings, where V'' < 0 brings the state close to an
-instability; no preconditioner built from ``K`` removes it, and it sets the iteration
-count of the asymptotic phase. The stiff set and the diagonal are computed from the
+instability; no preconditioner built from ``K`` removes it, and it limits the convergence
+rate once the contact set has settled. The stiff set and the diagonal are computed from the
 current gap at every ``refresh_every``-th iteration (the conjugate directions are kept;
 refreshing every iteration costs more iterations than it saves), and at the first
 iteration of a warm start. From a cold start (no ``initial``) the first
