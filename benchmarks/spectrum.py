@@ -11,9 +11,13 @@ uniform mode's 0, reported is the next). ``kappa`` = lambda_max / lambda_min bou
 conjugate-gradient iteration count like sqrt(kappa) on a fixed Hessian.
 
     python benchmarks/spectrum.py --sizes 256 512 --adhesion-lengths 0.005 0.05
+    python benchmarks/spectrum.py --sizes 256 --adhesion-lengths 0.05 --step 5 --lowest 12
 
-Prints one line per case; where the largest eigenvector lives (repulsive g < a0,
-attractive, free sites) shows which sites limit the preconditioner.
+Prints one line per case and preconditioner; where the largest and the smallest
+eigenvectors live (their shares on repulsive g < a0 and attractive sites; the rest is on
+free sites) shows which sites limit the preconditioner. ``--step`` takes the state after
+an earlier step of the approach; ``--lowest`` prints that many of the smallest
+eigenvalues (a few isolated ones could be deflated; a dense band cannot).
 """
 
 from __future__ import annotations
@@ -26,8 +30,12 @@ from adhesive import A0, ES, approach_offsets, make_law
 from hardwall import surface
 
 
-def extremes(apply, m):
-    """(lambda_max, its eigenvector, lambda_min > 0) of the operator ``apply`` on R^m."""
+def extremes(apply, m, lowest=1):
+    """Extreme eigenpairs of the operator ``apply`` on R^m.
+
+    Returns ``(lambda_max, its eigenvector, lows, their eigenvectors)``: ``lows`` are the
+    ``lowest`` smallest eigenvalues above the uniform mode's 0, ascending.
+    """
     from scipy.sparse.linalg import LinearOperator, eigs
 
     op = LinearOperator((m, m), matvec=lambda x: apply(np.ravel(x)), dtype=float)
@@ -36,11 +44,12 @@ def extremes(apply, m):
     shifted = LinearOperator(
         (m, m), matvec=lambda x: 1.05 * lam_max * np.ravel(x) - apply(np.ravel(x)), dtype=float
     )
-    low = np.sort(1.05 * lam_max - eigs(shifted, k=2, which="LR", tol=1e-4)[0].real)
-    return lam_max, vecs[:, 0].real, float(low[1])  # low[0]: the uniform mode's 0
+    low, low_vecs = eigs(shifted, k=lowest + 1, which="LR", tol=1e-4)
+    order = np.argsort(1.05 * lam_max - low.real)[1:]  # [0]: the uniform mode's 0
+    return lam_max, vecs[:, 0].real, 1.05 * lam_max - low.real[order], low_vecs[:, order].real
 
 
-def case(n, la, seed):
+def case(n, la, seed, step=10, lowest=1):
     import roughcontact as rc
     from roughcontact.solvers import smooth
     from roughcontact.solvers._ops import compliance_operator, stiffness_operator
@@ -49,7 +58,7 @@ def case(n, la, seed):
     law = make_law(la, None)
     sub = rc.Substrate(h.shape, contact_modulus=ES, pixel_size=A0)
     res = None
-    for d in approach_offsets(h, 10, 5e-4)["offsets"]:
+    for d in approach_offsets(h, 10, 5e-4)["offsets"][:step]:
         res = rc.solve(h, sub, law, offset=float(d), initial=res, tol=1e-8)
         if not res.converged:
             raise RuntimeError(f"n={n}, la={la}: step at d={d} did not converge")
@@ -66,17 +75,31 @@ def case(n, la, seed):
     def block(r):
         return smooth._precondition(r, stiff, diagonal, green, stiffness, True)[0]
 
-    out = dict(n=n, la=la, stiff=0 if stiff is None else len(stiff))
-    for name, precondition in (("green", green), ("block", block)):
-        lam_max, vec, lam_min = extremes(lambda v, p=precondition: p(hessian(v)), gap.size)
+    repulsive, attractive = gap < A0, (gap >= A0) & (gap < law.cutoff)
+
+    def weights(vec):
+        """Shares of the mode's squared amplitude on repulsive and attractive sites."""
         weight = vec**2 / (vec**2).sum()
-        attractive = (gap >= A0) & (gap < law.cutoff)
+        return float(weight[repulsive].sum()), float(weight[attractive].sum())
+
+    out = dict(
+        n=n,
+        la=la,
+        stiff=0 if stiff is None else len(stiff),
+        repulsive=float(repulsive.mean()),
+        attractive=float(attractive.mean()),
+    )
+    for name, precondition in (("green", green), ("block", block)):
+        lam_max, vec, lows, low_vecs = extremes(
+            lambda v, p=precondition: p(hessian(v)), gap.size, lowest
+        )
         out[name] = dict(
             lam_max=lam_max,
-            lam_min=lam_min,
-            kappa=lam_max / lam_min,
-            weight_repulsive=float(weight[gap < A0].sum()),
-            weight_attractive=float(weight[attractive].sum()),
+            lam_min=float(lows[0]),
+            lows=lows,
+            kappa=lam_max / lows[0],
+            weight_max=weights(vec),
+            weight_min=weights(low_vecs[:, 0]),
         )
     return out
 
@@ -86,20 +109,39 @@ def main(argv=None):
     ap.add_argument("--sizes", type=int, nargs="+", default=[256, 512])
     ap.add_argument("--adhesion-lengths", type=float, nargs="+", default=[0.005, 0.05])
     ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument(
+        "--step", type=int, default=10, help="the state after this approach step (1-10)"
+    )
+    ap.add_argument(
+        "--lowest", type=int, default=1, help="how many of the smallest eigenvalues to print"
+    )
     args = ap.parse_args(argv)
-    print("n      la     preconditioner  lam_max  lam_min  kappa   max-mode weight rep / att")
+    if not 1 <= args.step <= 10:
+        ap.error(f"--step must be in 1..10, got {args.step}")
+    if args.lowest < 1:
+        ap.error(f"--lowest must be >= 1, got {args.lowest}")
+    print(
+        "n      la     preconditioner  lam_max  lam_min  kappa   "
+        "mode weight rep / att: largest, smallest"
+    )
     for la in args.adhesion_lengths:
         for n in args.sizes:
             t0 = time.perf_counter()
-            r = case(n, la, args.seed)
+            r = case(n, la, args.seed, args.step, args.lowest)
             for name in ("green", "block"):
                 s = r[name]
+                (rmax, amax), (rmin, amin) = s["weight_max"], s["weight_min"]
                 print(
                     f"{n:<6d} {la:<6g} {name:<15s} {s['lam_max']:7.2f}  {s['lam_min']:7.3f}"
-                    f"  {s['kappa']:6.1f}  {s['weight_repulsive']:.2f} / "
-                    f"{s['weight_attractive']:.2f}"
+                    f"  {s['kappa']:6.1f}  {rmax:.2f} / {amax:.2f}, {rmin:.2f} / {amin:.2f}"
                 )
-            print(f"#   {r['stiff']} stiff sites, {time.perf_counter() - t0:.0f} s")
+                if args.lowest > 1:
+                    print("#   lowest:", " ".join(f"{v:.3f}" for v in s["lows"]))
+            print(
+                f"#   step {args.step}: {r['stiff']} stiff sites, repulsive / attractive "
+                f"sites {r['repulsive']:.3f} / {r['attractive']:.3f} of the grid, "
+                f"{time.perf_counter() - t0:.0f} s"
+            )
 
 
 if __name__ == "__main__":
