@@ -101,6 +101,27 @@ def approach_offsets(h: np.ndarray, steps: int, end_load: float) -> dict:
     )
 
 
+def approach_state(n: int, la: float, seed: int, steps: int, tol: float):
+    """The SPEC approach's first ``steps`` steps, each warm-started from the last.
+
+    Returns ``(h, law, substrate, offsets, state)``: the surface, potential, substrate,
+    all 10 offsets, and the state after step ``steps`` (None for 0). Raises if a step
+    does not converge. For the diagnostics (``spectrum.py``, ``front.py``).
+    """
+    import roughcontact as rc
+
+    h = surface(n, seed)
+    law = make_law(la, None)
+    sub = rc.Substrate(h.shape, contact_modulus=ES, pixel_size=A0)
+    offsets = approach_offsets(h, 10, 5e-4)["offsets"]
+    state = None
+    for d in offsets[:steps]:
+        state = rc.solve(h, sub, law, offset=float(d), initial=state, tol=tol)
+        if not state.converged:
+            raise RuntimeError(f"n={n}, la={la}: step at d={d} did not converge")
+    return h, law, sub, offsets, state
+
+
 def adhesion_potential(law, core: str = "linear"):
     """Adhesion 0.93's smoothed LJ93 wall with the same V(g) as ``law``.
 

@@ -20,8 +20,7 @@ from __future__ import annotations
 import argparse
 
 import numpy as np
-from adhesive import A0, ES, approach_offsets, make_law
-from hardwall import surface
+from adhesive import A0, approach_state
 
 
 def front(n, la, step, seed=1, tol=1e-6):
@@ -30,18 +29,14 @@ def front(n, la, step, seed=1, tol=1e-6):
 
     import roughcontact as rc
 
-    h = surface(n, seed)
-    law = make_law(la, None)
-    sub = rc.Substrate(h.shape, contact_modulus=ES, pixel_size=A0)
-    offsets = approach_offsets(h, 10, 5e-4)["offsets"]
-    prev = None
-    for d in offsets[: step - 1]:
-        prev = rc.solve(h, sub, law, offset=float(d), initial=prev, tol=tol)
+    h, law, sub, offsets, prev = approach_state(n, la, seed, step - 1, tol)
     offset = float(offsets[step - 1])
     full = rc.solve(h, sub, law, offset=offset, initial=prev, tol=tol)
+    if not full.converged:
+        raise RuntimeError(f"step {step} did not converge: {full.message}")
     before = np.zeros(h.shape, bool) if prev is None else np.asarray(prev.gap) < A0
     new = (np.asarray(full.gap) < A0) & ~before
-    labels, count = ndimage.label(new)
+    labels, _ = ndimage.label(new)
     first = np.zeros(h.shape, int)  # iteration at which a site first became repulsive
     rows = []
     for k in range(1, full.iterations + 1):

@@ -26,8 +26,7 @@ import argparse
 import time
 
 import numpy as np
-from adhesive import A0, ES, approach_offsets, make_law
-from hardwall import surface
+from adhesive import A0, approach_state
 
 
 def extremes(apply, m, lowest=1):
@@ -50,18 +49,10 @@ def extremes(apply, m, lowest=1):
 
 
 def case(n, la, seed, step=10, lowest=1):
-    import roughcontact as rc
     from roughcontact.solvers import smooth
     from roughcontact.solvers._ops import compliance_operator, stiffness_operator
 
-    h = surface(n, seed)
-    law = make_law(la, None)
-    sub = rc.Substrate(h.shape, contact_modulus=ES, pixel_size=A0)
-    res = None
-    for d in approach_offsets(h, 10, 5e-4)["offsets"][:step]:
-        res = rc.solve(h, sub, law, offset=float(d), initial=res, tol=1e-8)
-        if not res.converged:
-            raise RuntimeError(f"n={n}, la={la}: step at d={d} did not converge")
+    _, law, sub, _, res = approach_state(n, la, seed, step, tol=1e-8)
     gap = np.ravel(res.gap)
     curvature = law.curvature(gap)
     stiffness, green = stiffness_operator(sub), compliance_operator(sub)
