@@ -7,7 +7,7 @@ import pytest
 import xarray as xr
 
 import roughcontact as rc
-from roughcontact.analysis.path_analysis import analyze_path
+from roughcontact.analysis.path_analysis import UnconvergedPathError, analyze_path
 
 N = 128
 
@@ -93,7 +93,11 @@ def test_measured_and_predicted_stickiness_agree(surface, adhesion_length, stick
     r = analyze_path(adhesive_path(surface, adhesion_length))
     assert r.sticky is sticky and r.predicted_sticky is sticky
     assert r.predicted_sticky_from_curvature is sticky
-    assert r.necessary_condition_met is False  # ℓa/a0 < 0.486 h'rms, Δr < a0 here
+    # the condition assumes δh ≥ a0 and Δr ≈ a0; here δh ≈ 0.1 a0 and Δr < a0/2
+    assert r.necessary_condition_met is None
+    assert r.necessary_condition.startswith("not applicable: delta_h")
+    assert r.verdict == ("sticky" if sticky else "not sticky")
+    assert r.predicted_verdict == r.verdict
     if not sticky:
         # Eqs. 6-7 with the measured d_rep hold for weak adhesion, where the gap outside
         # the contacts is still the non-adhesive one (the paper's Fig. 4: tens of per
@@ -116,3 +120,63 @@ def test_weak_adhesion_leaves_the_repulsive_pressure_unchanged(surface):
     reference = analyze_path(adhesive_path(surface, 1e-7))
     weak = analyze_path(adhesive_path(surface, 0.0005))
     assert weak.repulsive_pressure == pytest.approx(reference.repulsive_pressure, rel=0.03)
+
+
+def test_hard_wall_path_is_its_own_reference(hard_path, surface):
+    h, _ = surface
+    r = analyze_path(hard_path, heights=h)
+    # the reference solves the same problem with the same solver: the same κ_rep up to
+    # the path's linear interpolation between steps, and no band
+    assert r.kappa_rep_hard_wall == pytest.approx(r.kappa_rep, rel=0.03)
+    assert abs(r.band_width) < 0.05 and r.band_fraction < 0.02
+    assert r.kappa_rep_hard_wall_corrected < r.kappa_rep_hard_wall
+    assert not any("band" in w for w in r.warnings)
+
+
+def test_soft_wall_band_is_reported_with_a_warning(surface):
+    h, _ = surface
+    r = analyze_path(adhesive_path(surface, 0.0005), heights=h)
+    assert r.kappa_rep > 1.2 * r.kappa_rep_hard_wall  # the paper's wall counts a band
+    assert 0.3 < r.band_width < 1.2
+    # κ_rep/κ_rep,hw ≈ A_rep/A_rep,hw at the same N_rep = 1 + δP/A_hw
+    assert r.kappa_rep / r.kappa_rep_hard_wall == pytest.approx(
+        0.01 / r.hard_wall_repulsive_area, rel=0.05
+    )
+    assert any("band of width delta" in w for w in r.warnings)
+    without = analyze_path(adhesive_path(surface, 0.0005), heights=h, hard_wall_reference=False)
+    assert math.isnan(without.kappa_rep_hard_wall) and without.kappa == r.kappa
+
+
+def test_unconverged_bracket_is_refused(surface):
+    h, sub = surface
+    law = rc.SmoothLJ93.from_adhesion_length(0.005)
+    offsets = h.max() + law.cutoff - np.linspace(0.0, 1.0, 21)
+    ds = rc.approach_retract(h, sub, law, offsets=offsets, retract=False, max_iter=3)
+    assert not ds["converged"].values.all()
+    with pytest.raises(UnconvergedPathError, match=r"step \d+ \(residual"):
+        analyze_path(ds, heights=h)
+    r = analyze_path(ds, heights=h, allow_unconverged=True)
+    assert r.reliable is False and any(w.startswith("UNRELIABLE") for w in r.warnings)
+    assert r.unconverged_steps == int((~ds["converged"].values).sum())
+
+
+def test_not_reached_says_how_far_and_which_offset(hard_path):
+    with pytest.raises(rc.ParameterError) as err:
+        analyze_path(hard_path, target_area=0.9)
+    text = str(err.value)
+    top = float(hard_path["repulsive_area"].max())
+    assert f"{top:.4g}" in text and "offset of about" in text and "--until-area 0.9" in text
+    # the extrapolated offset: linear in the last two steps
+    a = hard_path["repulsive_area"].values[-2:]
+    d = hard_path["offset"].values[-2:]
+    needed = d[1] + (0.9 - a[1]) * (d[1] - d[0]) / (a[1] - a[0])
+    assert f"{needed:.6g}" in text
+
+
+def test_pull_off_is_not_part_of_the_verdict(hard_path):
+    # a non-sticky path (κ > 0) with a large pull-off force stays not sticky
+    ds = hard_path.copy()
+    ds.attrs["pull_off"] = 10 * float(ds["repulsive_load"].max())
+    r = analyze_path(ds, hard_wall_reference=False)
+    assert r.kappa > 0 and not r.sticky and r.verdict == "not sticky"
+    assert r.pull_off == ds.attrs["pull_off"]

@@ -15,7 +15,26 @@ area is ``target_area`` of :math:`A_0` (1 % in the paper), and
 mean repulsive and attractive pressures and Eq. 4's ratio
 :math:`(N_{att}/A_{att})/(w/\Delta r)`. κ is also fitted as the slope of
 :math:`A_{rep}` against N over the small-area part of the branch (the lines of Fig. 2),
-with its standard error. All areas and loads per :math:`A_0`; lengths in the path's units.
+with its standard error (``kappa_fit``: a different quantity from ``kappa``, the ratio at
+the target area, and labelled differently everywhere). All areas and loads per
+:math:`A_0`; lengths in the path's units.
+
+**Verdict.** One rule (:mod:`.stickiness`): measured sticky ⇔ κ < 0 at the target area,
+i.e. :math:`1/\kappa < 0`; predicted: the same rule on Eq. 7's
+:math:`1/\kappa = 1/\kappa_{rep} - 1/\kappa_{att}` (Eq. 10), with the measured κ_rep
+(``predicted_*``) and, for reference, the continuum hard-wall κ_rep = 2
+(``predicted_*_continuum``). The pull-off force is reported beside the verdict.
+
+**Two κ_rep.** ``kappa_rep`` is the paper's definition on the paper's wall; the
+hard-wall reference (:mod:`.hard_wall_reference`) solves the non-adhesive hard wall on
+the same surface: ``kappa_rep_hard_wall`` at the same repulsive area,
+``kappa_rep_hard_wall_corrected`` with the perimeter-corrected area, and ``band_width``
+:math:`\delta = (A_{rep} - A_{rep}^{hw})/P` at the same repulsive load, the band of
+weakly repulsive sites a soft wall adds around every contact.
+
+**Convergence.** The analysis never interpolates across a step that did not converge:
+it raises :class:`UnconvergedPathError` naming the steps and residuals, unless
+``allow_unconverged=True``, which marks the result ``reliable = False``.
 """
 
 from __future__ import annotations
@@ -26,34 +45,49 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .._validate import ParameterError, in_range, json_ready
+from .hard_wall_reference import band_width
+from .hard_wall_reference import hard_wall_reference as _hard_wall_reference
 from .path import interpolate_at_area
+from .stickiness import NOT_STICKY, STICKY, is_sticky
 
-__all__ = ["PathAnalysis", "analyze_path", "load_path"]
+__all__ = ["PathAnalysis", "UnconvergedPathError", "analyze_path", "load_path"]
 
 _REQUIRED = ("offset", "load", "repulsive_load", "attractive_load", "repulsive_area",
              "attractive_area", "perimeter", "branch")  # fmt: skip
 _REQUIRED_ATTRS = ("rms_slope", "contact_modulus", "pixel_size", "nominal_area")
-# a pull-off below this fraction of the repulsive load at the target area is what a few
-# isolated asperities give on any adhesive surface (it does not grow with the contact),
-# not macroscopic stickiness; κ < 0 is the paper's criterion proper
-STICKY_PULL_OFF = 0.1
+#: πδ/d_rep above which the soft wall's repulsive band is reported as a warning.
+BAND_WARNING = 0.1
+
+
+class UnconvergedPathError(ParameterError):
+    """The steps the analysis would interpolate between did not converge."""
 
 
 @dataclass(frozen=True)
 class PathAnalysis:
     """Measured quantities of one path at ``target_area`` (see the module docstring).
 
-    ``sticky`` (measured) is True when κ < 0 (the surfaces hold together under tension
-    at the target area) or when the pull-off force exceeds ``STICKY_PULL_OFF`` (10 %) of
-    the repulsive load at the target area.
-    ``predicted_*``: the Pastewka–Robbins theory (Eqs. 6, 7, 10, with the measured
-    κ_rep and the measured d_rep; ``*_from_curvature`` with d_rep = 4h'rms/h''rms) for
-    laws with a range Δr and a work of adhesion (None/NaN otherwise), see
-    :func:`roughcontact.theory.pastewka_robbins.predict`.
+    ``kappa`` is the ratio :math:`h'_{rms}E^*A_{rep}/N` at the target area and
+    ``inverse_kappa`` its inverse (the additive quantity over seeds); ``kappa_fit`` the
+    slope of :math:`A_{rep}(N)` (a different quantity). ``sticky`` (measured) is
+    :func:`.stickiness.is_sticky` of κ, ``verdict`` its words; the pull-off force
+    (``pull_off``, per A0; NaN when the retraction never separated the surfaces) is not
+    part of the verdict. ``predicted_*``: the Pastewka–Robbins theory (Eqs. 6, 7, 10,
+    with the measured κ_rep and the measured d_rep; ``*_from_curvature`` with d_rep =
+    4h'rms/h''rms; ``*_continuum`` with the continuum hard-wall κ_rep = 2) for laws with
+    a range Δr and a work of adhesion (None/NaN otherwise), see
+    :func:`roughcontact.theory.pastewka_robbins.predict`. ``kappa_rep_hard_wall``,
+    ``kappa_rep_hard_wall_corrected``, ``hard_wall_repulsive_area`` (the hard wall's
+    A_rep/A0 at this path's N_rep), ``band_width`` δ (length) and ``band_fraction``
+    (πδ/d_rep): the hard-wall reference (NaN when the surface is not available).
+    ``necessary_condition_met`` is None and ``necessary_condition`` says "not
+    applicable: <reason>" when its assumptions (δh ≥ a0, Δr ≈ a0) do not hold.
     ``kappa_att`` and ``area_ratio`` are ``inf`` without attraction; ``kappa_fit_error``
-    is the standard error of the fitted slope; ``warnings`` lists conditions under which
-    the paper's analysis is not meaningful (too few asperities in contact, a jump
-    inside the interpolation bracket, ...).
+    is the standard error of the fitted slope. ``reliable`` is False only when
+    ``allow_unconverged`` let unconverged steps into the result; ``unconverged_steps``
+    counts them on the analysed branch. ``warnings`` lists conditions under which the
+    paper's analysis is not meaningful (too few asperities in contact, a jump inside the
+    interpolation bracket, a wide repulsive band, ...).
     """
 
     target_area: float
@@ -91,6 +125,19 @@ class PathAnalysis:
     predicted_sticky_from_curvature: bool | None = None
     necessary_condition_met: bool | None = None
     warnings: list[str] = field(default_factory=list)
+    inverse_kappa: float = math.nan
+    verdict: str = ""
+    predicted_verdict: str = ""
+    predicted_kappa_continuum: float = math.nan
+    predicted_sticky_continuum: bool | None = None
+    kappa_rep_hard_wall: float = math.nan
+    kappa_rep_hard_wall_corrected: float = math.nan
+    hard_wall_repulsive_area: float = math.nan
+    band_width: float = math.nan
+    band_fraction: float = math.nan
+    necessary_condition: str = ""
+    reliable: bool = True
+    unconverged_steps: int = 0
 
     def to_dict(self) -> dict:
         """JSON-ready: non-finite numbers become None."""
@@ -137,8 +184,79 @@ def _ratio(a, b):
     return a / b if b != 0 else (math.inf if a > 0 else math.nan)
 
 
+def _bracket(area, target) -> list[int]:
+    """Indices of the (one or two) states ``interpolate_at_area`` interpolates between."""
+    order = np.argsort(area, kind="stable")
+    k = int(np.searchsorted(area[order], target))
+    if k < area.size and area[order][k] == target:
+        return [int(order[k])]
+    return [int(i) for i in order[max(k - 1, 0) : k + 1]]
+
+
+def _not_reached(col, target, branch, control, steps) -> str:
+    """How far the branch got and which offset (or load) would reach ``target``."""
+    area, x = col["repulsive_area"], col[control]
+    i = int(np.argmax(area))
+    text = f"target area {target} is not reached: " + (
+        f"the {branch} branch reaches A_rep/A0 = {area[i]:.4g} at most (step {steps[i]}, "
+        f"{control} {x[i]:.6g}), short of the target {target:g}"
+        if area[i] < target
+        else f"the {branch} branch starts above the target {target:g} "
+        f"(A_rep/A0 = {area.min():.4g} at its first step)"
+    )
+    if area[i] < target and area.size >= 2 and i > 0:
+        slope = (area[i] - area[i - 1]) / (x[i] - x[i - 1]) if x[i] != x[i - 1] else 0.0
+        if slope != 0 and math.isfinite(slope):
+            needed = x[i] + (target - area[i]) / slope
+            text += (
+                f"; extrapolating its last two steps, A_rep/A0 = {target:g} needs a {control} "
+                f"of about {needed:.6g}: extend the path (e.g. 'roughcontact path ... "
+                f"--until-area {target:g}')"
+            )
+    return text
+
+
+def _convergence(ds, on, bracket, steps, allow):
+    """(unconverged step indices on the branch, warnings); raises on an unconverged bracket."""
+    if "converged" not in ds.variables:
+        return [], []
+    ok = np.asarray(ds["converged"].values, dtype=bool)[on]
+    residual = (
+        np.asarray(ds["residual"].values, dtype=float)[on]
+        if "residual" in ds.variables
+        else np.full(ok.size, math.nan)
+    )
+    bad = [i for i in range(ok.size) if not ok[i]]
+    inside = [i for i in bracket if not ok[i]]
+    named = ", ".join(f"{steps[i]} (residual {residual[i]:.3g})" for i in inside)
+    if inside and not allow:
+        raise UnconvergedPathError(
+            f"the steps around the target area did not converge: step {named}; the analysis "
+            "does not interpolate across them. Rerun the path with a larger max_iter (or a "
+            "smaller step), or pass allow_unconverged=True (--allow-unconverged) to get a "
+            "result marked unreliable"
+        )
+    warnings = []
+    if inside:
+        warnings.append(f"UNRELIABLE: interpolated across unconverged step {named}")
+    if len(bad) > len(inside):
+        warnings.append(
+            f"{len(bad) - len(inside)} other unconverged steps on the branch were left out "
+            "of the fit of kappa_fit"
+        )
+    return bad, warnings
+
+
 def analyze_path(
-    ds, *, target_area: float = 0.01, branch: str = "approach", fit_max_area: float = 0.05
+    ds,
+    *,
+    target_area: float = 0.01,
+    branch: str = "approach",
+    fit_max_area: float = 0.05,
+    allow_unconverged: bool = False,
+    hard_wall_reference: bool = True,
+    heights=None,
+    substrate=None,
 ) -> PathAnalysis:
     """Analyse a load path at ``target_area`` (the paper's 1 % of A0).
 
@@ -151,54 +269,79 @@ def analyze_path(
     branch : {"approach", "retract"}
         Which branch of the path to analyse (the paper loads: approach).
     fit_max_area : float
-        Largest :math:`A_{rep}/A_0` used by the linear fit of :math:`A_{rep}(N)`.
+        Largest :math:`A_{rep}/A_0` used by the linear fit of :math:`A_{rep}(N)`, in (0, 1].
+    allow_unconverged : bool
+        Interpolate across unconverged steps anyway; the result says ``reliable=False``.
+    hard_wall_reference : bool
+        Solve the hard wall on the same surface for ``kappa_rep_hard_wall``,
+        ``kappa_rep_hard_wall_corrected`` and ``band_width`` (a few solves; needs the
+        heights: from ``heights`` or the path's ``heights`` variable).
+    heights : (nx, ny) array, optional
+        The path's surface (length), if the dataset does not hold it.
+    substrate : Substrate, optional
+        The path's substrate; default: rebuilt from the dataset's attributes.
 
     Raises
     ------
+    UnconvergedPathError
+        If a step the interpolation needs did not converge (unless ``allow_unconverged``).
     ParameterError
-        If ``ds`` is not a roughcontact path, or the branch never reaches ``target_area``.
+        If ``ds`` is not a roughcontact path, or the branch never reaches ``target_area``
+        (the message says how far it got and which offset would reach it).
     """
     if not hasattr(ds, "variables"):
         ds = load_path(ds)
     _check(ds)
     target = in_range("target_area", target_area, 1e-12, 1.0)
+    fit_max_area = in_range("fit_max_area", fit_max_area, 1e-12, 1.0)
     if branch not in ("approach", "retract"):
         raise ParameterError(f"branch must be 'approach' or 'retract', got {branch!r}")
     on = np.asarray(ds["branch"].values == branch)
     if on.sum() < 2:
         raise ParameterError(f"the path has fewer than 2 steps on its {branch} branch")
+    steps = np.asarray(ds["step"].values if "step" in ds.coords else np.arange(on.size))[on]
     col = {k: np.asarray(ds[k].values, dtype=float)[on] for k in _REQUIRED if k != "branch"}
     area = col["repulsive_area"]
-    try:
-        at = {k: interpolate_at_area(area, v, target) for k, v in col.items()}
-    except ParameterError as err:
-        raise ParameterError(f"{err}; extend the path to reach A_rep/A0 = {target}") from None
+    if not area.min() <= target <= area.max():
+        control = "load" if ds.attrs.get("control") == "load" else "offset"
+        raise ParameterError(_not_reached(col, target, branch, control, steps))
+    bracket = _bracket(area, target)
+    bad, warnings = _convergence(ds, on, bracket, steps, allow_unconverged)
+    at = {k: interpolate_at_area(area, v, target) for k, v in col.items()}
     a = ds.attrs
     slope, modulus = float(a["rms_slope"]), float(a["contact_modulus"])
     scale = slope * modulus * target
     w, dr = float(a.get("work_of_adhesion", math.nan)), float(a.get("range", math.nan))
-    warnings = []
     lam_s = float(a.get("short_cutoff_estimate", math.nan))
     if math.isfinite(lam_s) and target * float(a["nominal_area"]) / lam_s**2 < 10:
         warnings.append(
             f"A_rep/lambda_s^2 = {target * float(a['nominal_area']) / lam_s**2:.3g} < 10: too "
             "few asperities in contact for the paper's statistical analysis"
         )
-    if "jump" in ds.variables:
-        jump = np.asarray(ds["jump"].values, dtype=bool)[on]
-        order = np.argsort(area, kind="stable")
-        k = int(np.searchsorted(area[order], target))
-        if 0 < k < area.size and jump[order][max(k - 1, 0) : k + 1].any():
+    if "jump" in ds.variables and len(bracket) == 2:
+        if np.asarray(ds["jump"].values, dtype=bool)[on][bracket].any():
             warnings.append("a jump (instability) lies inside the interpolation bracket")
     d = col["offset"]
     grad = np.gradient(col["load"], d) if np.all(np.diff(d) != 0) else np.full(d.size, np.nan)
     stiffness = -interpolate_at_area(area, grad, target)
-    kappa_fit, kappa_err, n_fit = _fit_kappa(col["load"], area, fit_max_area, slope, modulus)
+    fit = np.ones(area.size, dtype=bool)
+    fit[bad] = False
+    kappa_fit, kappa_err, n_fit = _fit_kappa(
+        col["load"][fit], area[fit], fit_max_area, slope, modulus
+    )
     pull_off = float(a.get("pull_off", math.nan))
+    warnings += _pull_off_warnings(ds, a)
     kappa = _ratio(scale, at["load"]) if at["load"] != 0 else math.inf
     kappa_rep = _ratio(scale, at["repulsive_load"])
     d_rep = _ratio(math.pi * target, at["perimeter"])
     theory = _theory(a, kappa_rep, d_rep, w / modulus, dr)
+    reference = (
+        _reference(ds, heights, substrate, target, at, kappa_rep, d_rep)
+        if hard_wall_reference
+        else {"warnings": []}
+    )
+    warnings += reference.pop("warnings")
+    sticky = bool(is_sticky(kappa))
     return PathAnalysis(
         target_area=target,
         offset=at["offset"],
@@ -224,38 +367,140 @@ def analyze_path(
         fit_points=n_fit,
         contact_stiffness=stiffness,
         pull_off=pull_off,
-        sticky=bool(kappa < 0 or (pull_off > STICKY_PULL_OFF * at["repulsive_load"])),
+        sticky=sticky,
         rms_slope=slope,
         contact_modulus=modulus,
         **theory,
+        **reference,
         warnings=warnings,
+        inverse_kappa=at["load"] / scale,
+        verdict=STICKY if sticky else NOT_STICKY,
+        reliable=not any(i in bad for i in bracket),
+        unconverged_steps=len(bad),
     )
+
+
+def _pull_off_warnings(ds, attrs) -> list[str]:
+    """Why the pull-off force may be missing or rest on unconverged steps."""
+    if "retract" not in set(np.asarray(ds["branch"].values).tolist()):
+        return []
+    out = []
+    if not math.isfinite(float(attrs.get("pull_off", math.nan))):
+        out.append("pull-off not measured: the retraction never separated the surfaces")
+    if "converged" in ds.variables:
+        back = np.asarray(ds["branch"].values) == "retract"
+        n = int((~np.asarray(ds["converged"].values, dtype=bool)[back]).sum())
+        if n:
+            out.append(f"the pull-off force rests on a retraction with {n} unconverged steps")
+    return out
+
+
+def _substrate_from_attrs(attrs):
+    from ..elastic import Substrate
+
+    thickness = float(attrs.get("thickness", math.inf))
+    return Substrate(
+        tuple(int(n) for n in np.atleast_1d(attrs["grid"])),
+        contact_modulus=float(attrs["contact_modulus"]),
+        pixel_size=float(attrs["pixel_size"]),
+        thickness=None if math.isinf(thickness) else thickness,
+        poisson=float(attrs.get("poisson", 0.5)),
+        base=str(attrs.get("base") or "bonded"),
+    )
+
+
+def _reference(ds, heights, substrate, target, at, kappa_rep, d_rep) -> dict:
+    """The hard-wall reference's fields of :class:`PathAnalysis` (and its warnings)."""
+    if heights is None and "heights" in ds.variables:
+        heights = np.asarray(ds["heights"].values, dtype=float)
+    if heights is None:
+        return {
+            "warnings": [
+                "hard-wall reference not computed: the path holds no heights (pass heights=, "
+                "or write the path with this version of roughcontact)"
+            ]
+        }
+    substrate = _substrate_from_attrs(ds.attrs) if substrate is None else substrate
+    ref = _hard_wall_reference(
+        heights,
+        substrate,
+        target_area=target,
+        rms_slope=float(ds.attrs["rms_slope"]),
+        load=at["repulsive_load"],
+    )
+    delta = band_width(target, ref.area_at_load, at["perimeter"])
+    out = {
+        "kappa_rep_hard_wall": ref.kappa_rep,
+        "kappa_rep_hard_wall_corrected": ref.kappa_rep_corrected,
+        "hard_wall_repulsive_area": ref.area_at_load,
+        "band_width": delta,
+        "band_fraction": math.pi * delta / d_rep,
+        "warnings": [],
+    }
+    if not ref.converged:
+        out["warnings"].append(
+            f"the hard-wall reference did not converge in {ref.solves} solves: its values are "
+            "approximate"
+        )
+    if out["band_fraction"] > BAND_WARNING:
+        k = float(ds.attrs.get("stiffness", math.nan)) * float(ds.attrs["pixel_size"])
+        wall = (
+            f"its site stiffness k = {k / float(ds.attrs['contact_modulus']):.3g} E*/a0 per area"
+            if math.isfinite(k)
+            else "its finite stiffness"
+        )
+        out["warnings"].append(
+            f"kappa_rep = {kappa_rep:.3g} includes a band of width delta = {delta:.3g} "
+            f"around every contact (pi delta/d_rep = {out['band_fraction']:.0%}) where the "
+            f"wall is weakly repulsive; a hard wall on the same surface gives kappa_rep = "
+            f"{ref.kappa_rep:.3g} "
+            f"({ref.kappa_rep_corrected:.3g} with the corrected area). The band comes from "
+            f"the wall model ({wall}, softer than the substrate's on-site stiffness), not "
+            "from adhesion or the grid: a larger grid keeps it, a stiffer wall removes it"
+        )
+    return out
 
 
 def _theory(attrs, kappa_rep, d_rep, adhesion_length, interaction_range) -> dict:
     """Pastewka–Robbins predictions for the path's parameters, or {} if they do not apply."""
-    from ..theory.pastewka_robbins import predict
+    from ..theory.pastewka_robbins import (
+        KAPPA_REP,
+        height_change,
+        necessary_condition_applicability,
+        necessary_condition_verdict,
+        predict,
+    )
 
     usable = [adhesion_length, interaction_range, kappa_rep, d_rep]
     if not all(math.isfinite(v) and v > 0 for v in usable):
         return {}
+    a0 = float(attrs.get("equilibrium_distance", attrs["pixel_size"]))
     common = {
         "rms_slope": float(attrs["rms_slope"]),
         "interaction_range": interaction_range,
         "adhesion_length": adhesion_length,
-        "kappa_rep": kappa_rep,
-        "atomic_spacing": float(attrs.get("equilibrium_distance", attrs["pixel_size"])),
+        "atomic_spacing": a0,
     }
-    measured = predict(d_rep=d_rep, **common)
-    curvature = predict(rms_curvature=float(attrs["rms_curvature"]), **common)
+    measured = predict(d_rep=d_rep, kappa_rep=kappa_rep, **common)
+    continuum = predict(d_rep=d_rep, kappa_rep=KAPPA_REP, **common)
+    curvature = predict(rms_curvature=float(attrs["rms_curvature"]), kappa_rep=kappa_rep, **common)
+    met = bool(measured.necessary_condition_met)
+    reason = necessary_condition_applicability(
+        height_change(common["rms_slope"], d_rep), interaction_range, a0
+    )
+    sticky = is_sticky(measured.kappa)
     return {
         "predicted_area_ratio": measured.area_ratio,
         "predicted_kappa_att": measured.kappa_att,
         "predicted_kappa": measured.kappa,
         "predicted_margin": measured.margin,
-        "predicted_sticky": bool(measured.sticky),
+        "predicted_sticky": sticky,
+        "predicted_verdict": STICKY if sticky else NOT_STICKY,
+        "predicted_kappa_continuum": continuum.kappa,
+        "predicted_sticky_continuum": is_sticky(continuum.kappa),
         "predicted_area_ratio_from_curvature": curvature.area_ratio,
         "predicted_kappa_att_from_curvature": curvature.kappa_att,
-        "predicted_sticky_from_curvature": bool(curvature.sticky),
-        "necessary_condition_met": bool(measured.necessary_condition_met),
+        "predicted_sticky_from_curvature": is_sticky(curvature.kappa),
+        "necessary_condition_met": None if reason else met,
+        "necessary_condition": necessary_condition_verdict(met, reason),
     }

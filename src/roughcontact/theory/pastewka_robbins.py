@@ -45,7 +45,12 @@ height by less than about one atomic spacing a0) into Eq. 7 gives
 = ``0.486 h'_rms`` for ``kappa_rep = 2``; the paper rounds this to
 ``l_a/a0 >~ 0.5 h'_rms``. :func:`necessary_condition` uses the unrounded ``c/kappa_rep``
 so that, under the stated assumptions, Eq. 10 never reports "sticky" while the necessary
-condition fails.
+condition fails. On real crystalline surfaces ``delta_h >= a0`` holds by construction; a
+simulated surface with continuous heights need not satisfy it, and
+:func:`necessary_condition_applicability` says when the condition is "not applicable":
+``delta_h < a0`` (contacts smaller than one atomic step) or ``Delta_r`` not about ``a0``
+(outside ``[a0/2, 2 a0]``), as in lattice simulations with small ``l_a``, where Eq. 10
+itself still applies.
 """
 
 from __future__ import annotations
@@ -72,6 +77,8 @@ __all__ = [
     "kappa_att_from_area_ratio",
     "kappa_from_components",
     "necessary_condition",
+    "necessary_condition_applicability",
+    "necessary_condition_verdict",
     "predict",
     "predicted_d_rep",
     "stickiness_margin",
@@ -87,6 +94,8 @@ KAPPA_REP = 2.0
 #: ``c = (256/(9 pi^3))^(1/3) = 0.9717``: ``kappa_att >= c h'_rms a0/l_a`` if
 #: ``Delta_r = a0 <= delta_h`` (the necessary condition).
 NECESSARY_CONDITION_CONSTANT = (256.0 / (9.0 * math.pi**3)) ** (1.0 / 3.0)
+#: ``Delta_r`` counts as "about a0" for the necessary condition within this factor.
+RANGE_ABOUT_SPACING = 2.0
 
 
 def _out(x):
@@ -230,6 +239,33 @@ def necessary_condition(adhesion_length, rms_slope, atomic_spacing=1.0, kappa_re
     return _out(la / a0 > NECESSARY_CONDITION_CONSTANT / kr * s)
 
 
+def necessary_condition_applicability(height_change, interaction_range, atomic_spacing=1.0):
+    """Why the necessary condition does not apply, or ``""`` when its assumptions hold.
+
+    The condition assumes ``delta_h >= a0`` (no contact changes height by less than one
+    atomic step) and ``Delta_r ~ a0`` (here: within a factor ``RANGE_ABOUT_SPACING`` = 2).
+    ``height_change`` delta_h = h'_rms d_rep/4 (Eq. 9), ``interaction_range`` Delta_r and
+    ``atomic_spacing`` a0, all > 0 in the same length unit. Returns a reason such as
+    ``"delta_h = 0.07 a0 < a0"``; several are joined by ``"; "``.
+    """
+    dh = positive("height_change", height_change)
+    dr = positive("interaction_range", interaction_range)
+    a0 = positive("atomic_spacing", atomic_spacing)
+    reasons = []
+    if dh < a0:
+        reasons.append(f"delta_h = h'rms d_rep/4 = {dh / a0:.3g} a0 < a0")
+    if not a0 / RANGE_ABOUT_SPACING <= dr <= RANGE_ABOUT_SPACING * a0:
+        reasons.append(f"Delta_r = {dr / a0:.3g} a0 is not about a0")
+    return "; ".join(reasons)
+
+
+def necessary_condition_verdict(met: bool, reason: str) -> str:
+    """``"met"``, ``"not met"`` or ``"not applicable: <reason>"`` (one wording everywhere)."""
+    if reason:
+        return f"not applicable: {reason}"
+    return "met" if met else "not met"
+
+
 @dataclass(frozen=True)
 class PastewkaRobbinsPrediction:
     """Everything the theory predicts for one surface and interaction (see :func:`predict`).
@@ -246,7 +282,9 @@ class PastewkaRobbinsPrediction:
     * ``margin = pi (3/16)^(2/3)/S = kappa_rep/kappa_att`` (> 1 sticky) and ``sticky``
       (``S < pi (3/16)^(2/3)``, equivalently ``kappa_att < kappa_rep``);
     * ``threshold_adhesion_length = l_a/margin``, l_a at the onset of stickiness;
-    * ``necessary_condition_met``: ``l_a/a0 > 0.486 h'_rms`` (:func:`necessary_condition`).
+    * ``necessary_condition_met``: ``l_a/a0 > 0.486 h'_rms`` (:func:`necessary_condition`;
+      for real crystalline surfaces, where ``delta_h >= a0`` holds by construction; check
+      a simulated surface with :func:`necessary_condition_applicability`).
     """
 
     rms_slope: float
