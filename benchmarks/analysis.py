@@ -3,13 +3,16 @@
 For one self-affine surface per seed (H = 0.8, h'rms = 0.1, lambda_L = n/2, E* = a0 = 1)
 it follows approach paths and prints, at A_rep = 1 % of A0 (``analyze_path``):
 
-* non-adhesive kappa_rep with the hard wall and with the paper's soft wall at vanishing
-  adhesion (``SmoothLJ93`` with l_a = 1e-7): literature 1.8-2.6 (the paper: ~2);
+* non-adhesive kappa_rep with the hard wall: literature 1.8-2.6 (the paper: ~2); with the
+  paper's soft wall at vanishing adhesion (``SmoothLJ93`` with l_a = 1e-7) it is larger by
+  its repulsive band: kappa_rep / kappa_rep_hard_wall = A_rep / A_rep,hw at the same N_rep
+  (within 5 %), band width delta 0.3-1.2 a0;
 * Eq. 4: N_att / A_att over w / Delta_r (weak adhesion: within 10 % of 1);
 * N_rep / A_rep with weak adhesion against l_a = 1e-7 (Fig. 3 upper inset: unchanged);
 * d_rep = pi A_rep / P against 4 h'rms / h''rms (within a factor 2);
-* measured stickiness (kappa < 0, or pull-off > 10 % of N_rep) against Eq. 10's verdict,
-  for a clearly non-sticky (l_a = 0.0005) and a clearly sticky (l_a = 0.02) case.
+* measured stickiness (kappa < 0, the one rule) against Eq. 10's verdict (with the
+  measured kappa_rep), for a clearly non-sticky (l_a = 0.0005) and a clearly sticky
+  (l_a = 0.02) case.
 
     python benchmarks/analysis.py                      # 512², lambda_s = 8, seeds 1 2
     python benchmarks/analysis.py --size 1024 --short-cutoff 16 --seeds 1 --json a.json
@@ -70,9 +73,17 @@ def main(argv=None) -> int:
         p = paths(args.size, args.short_cutoff, seed, args.steps)
         a = {k: analyze_path(v) for k, v in p.items()}
         tag = f"{args.size}² λs={args.short_cutoff:g} seed {seed}"
-        for key, label in (("hardwall", "hard wall"), (NON_ADHESIVE, "soft wall")):
-            k = a[key].kappa_rep
-            check(f"{tag} κ_rep {label}", 1.8 <= k <= 2.6, f"{k:.3f} (1.8-2.6)", rows)
+        k = a["hardwall"].kappa_rep
+        check(f"{tag} κ_rep hard wall", 1.8 <= k <= 2.6, f"{k:.3f} (1.8-2.6)", rows)
+        soft = a[NON_ADHESIVE]
+        band = soft.kappa_rep / soft.kappa_rep_hard_wall / (0.01 / soft.hard_wall_repulsive_area)
+        check(
+            f"{tag} κ_rep soft wall = hard wall × A_rep/A_rep,hw",
+            abs(band - 1) <= 0.05 and 0.3 <= soft.band_width <= 1.2,
+            f"{soft.kappa_rep:.3f} vs {soft.kappa_rep_hard_wall:.3f} (ratio/area ratio "
+            f"{band:.3f}, δ = {soft.band_width:.2f} a0)",
+            rows,
+        )
         eq4 = a[WEAK].attractive_pressure_over_w_per_dr
         check(f"{tag} Eq. 4 at ℓa={WEAK}", abs(eq4 - 1) <= 0.1, f"{eq4:.3f} (1 ± 0.1)", rows)
         pr = {la: a[la].repulsive_pressure for la in (NON_ADHESIVE, WEAK)}
@@ -91,7 +102,7 @@ def main(argv=None) -> int:
             check(
                 f"{tag} stickiness at ℓa={la}",
                 same,
-                f"measured {r.sticky} (κ={r.kappa:.3g}, pull-off {r.pull_off:.3g} E*), "
+                f"measured {r.verdict} (κ={r.kappa:.3g}; pull-off {r.pull_off:.3g} E*), "
                 f"Eq. 10 {r.predicted_sticky} (margin {r.predicted_margin:.3g})",
                 rows,
             )

@@ -93,7 +93,13 @@ def test_figure2_plots_the_approach_and_the_fitted_kappa(study):
         )
     assert colours[0.005] == "black" and colours[0.05] == "tab:blue"
     assert colours[[k for k in colours if math.isnan(k)][0]] == "0.55"  # non-adhesive: grey
-    assert "N / (A0 h′rms E*)" in ax.get_xlabel() and "A_rep / A0" in ax.get_ylabel()
+    assert r"$N/(A_0 h'_\mathrm{rms} E^*)$" in ax.get_xlabel()
+    assert r"$A_\mathrm{rep}/A_0$" in ax.get_ylabel()
+    # the legend names the fitted slope κ_fit, the title the surface (typeset)
+    texts = [t.get_text() for t in fig.legends[0].get_texts()]
+    assert any(r"$\kappa_\mathrm{fit} = " in t for t in texts)
+    assert not any(r"$\kappa = " in t or "κ" in t for t in texts)
+    assert "$H = 0.8$" in ax.get_title() and r"$h'_\mathrm{rms} = 0.1$" in ax.get_title()
     # default: the surface (and seed) of the first task, every interaction
     assert sorted(_lines(figure2(ds).axes[0], "data:")) == ["00000", "00004", "00008"]
 
@@ -125,9 +131,17 @@ def test_figure3_collapse_data_and_symbols(study):
         assert line.get_marker() == {0.5: "s", 0.8: "o"}[float(t["hurst"])]
         assert line.get_markerfacecolor() == line.get_markeredgecolor()
     theory = [next(ln for ln in ax.lines if ln.get_gid() == "theory") for ax in fig.axes[:3]]
-    for line, slope in zip(theory, (1.0, 0.5, 1.0), strict=True):  # Eq. 4, Eq. 2 (κ_rep = 2)
+    kr = ds["kappa_rep"].values[~ds["failed"].values]
+    kr = 1.0 / np.mean(1.0 / kr[np.isfinite(kr) & (kr > 0)])  # the measured κ_rep
+    for line, slope in zip(theory, (1.0, 1.0 / kr, 1.0), strict=True):  # Eq. 4, Eq. 2, P d/π
         xy = line.get_xydata()
         np.testing.assert_allclose(xy[:, 1], slope * xy[:, 0], rtol=1e-12)
+    continuum = next(ln for ln in fig.axes[1].lines if ln.get_gid() == "kappa_rep_continuum")
+    xy = continuum.get_xydata()  # κ_rep = 2 for reference, dashed
+    np.testing.assert_allclose(xy[:, 1], xy[:, 0] / pr.KAPPA_REP, rtol=1e-12)
+    assert continuum.get_linestyle() == "--"
+    given = next(ln for ln in figure3(ds, kappa_rep=2.0).axes[1].lines if ln.get_gid() == "theory")
+    np.testing.assert_allclose(given.get_xydata()[:, 1], given.get_xydata()[:, 0] / 2.0)
 
 
 def test_figure4_theory_lines_are_eqs_6_and_7(study):
@@ -155,7 +169,16 @@ def test_figure4_theory_lines_are_eqs_6_and_7(study):
         (u, ratio), = _lines(ax_ratio, "task:")[tid].get_xydata()  # fmt: skip
         assert ratio == pytest.approx(float(t["area_ratio"]))
         assert a * u ** (2 / 3) == pytest.approx(pr.area_ratio(*args[:3]))
+    # the sticky region ends at the measured κ_rep, 1/<1/κ_rep> over the tasks
+    kr = ds["kappa_rep"].values[~ds["failed"].values]
+    kr = 1.0 / np.mean(1.0 / kr[np.isfinite(kr) & (kr > 0)])
     shade = next(c for c in ax_kappa.collections if c.get_gid() == "sticky")
+    assert shade.get_paths()[0].vertices[:, 1].max() == pytest.approx(kr, rel=1e-12)
+    assert f"{kr:.3g}" in shade.get_label() and "(measured)" in shade.get_label()
+    continuum = next(ln for ln in ax_kappa.lines if ln.get_gid() == "kappa_rep_continuum")
+    assert continuum.get_linestyle() == "--" and set(continuum.get_ydata()) == {pr.KAPPA_REP}
+    ax_given = figure4(ds, kappa_rep=pr.KAPPA_REP).axes[1]
+    shade = next(c for c in ax_given.collections if c.get_gid() == "sticky")
     assert shade.get_paths()[0].vertices[:, 1].max() == pytest.approx(pr.KAPPA_REP)
 
 

@@ -64,12 +64,14 @@ def test_warm_start_and_cap(system):
 def test_approach_retract_path_and_pull_off(system, tmp_path):
     h, sub = system
     law = SmoothLJ93.from_adhesion_length(0.05)
-    offsets = h.max() + np.linspace(1.6, 0.6, 11)
+    # back out past a0 + Δr (2.1 a0): the retraction must separate for a pull-off
+    offsets = h.max() + np.linspace(2.2, 0.6, 11)
     ds = rc.approach_retract(h, sub, law, offsets=offsets, retract=True, fields_at=[0, -1])
     assert ds.sizes["step"] == 21
     assert list(ds["branch"].values[:11]) == ["approach"] * 11
     assert ds.attrs["all_converged"] == 1
     retract = ds.where(ds["branch"] == "retract", drop=True)
+    assert ds.attrs["separated"] == 1 and retract["repulsive_area"].values[-1] == 0
     assert ds.attrs["pull_off"] == pytest.approx(max(0.0, -float(retract["load"].min())))
     assert ds.attrs["pull_off"] > 0  # strongly adhesive, smooth at small scales
     assert ds["pressure"].shape == (2, 64, 64)

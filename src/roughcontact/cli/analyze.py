@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import sys
 
 import click
 
@@ -30,20 +31,49 @@ import click
     show_default=True,
     help="Largest A_rep/A0 in the linear fit of A_rep against N.",
 )
+@click.option(
+    "--allow-unconverged",
+    is_flag=True,
+    help="Interpolate across unconverged steps anyway (the result says reliable: false).",
+)
+@click.option(
+    "--hard-wall-reference/--no-hard-wall-reference",
+    default=True,
+    show_default=True,
+    help="Also solve the hard wall on the same surface (kappa_rep_hard_wall, band_width).",
+)
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
-def analyze(path_file, target_area, branch, fit_max_area, as_json):
+def analyze(
+    path_file, target_area, branch, fit_max_area, allow_unconverged, hard_wall_reference, as_json
+):
     """Measure κ, κ_rep, κ_att, A_rep/A_att, d_rep and pull-off on a path, next to theory.
 
-    Areas and loads per A0; non-finite values (no attraction) print as null. The
-    predicted_* keys are Pastewka & Robbins' Eqs. 6, 7 and 10 for the path's surface and
-    interaction (with the measured κ_rep and d_rep; *_from_curvature: d_rep = 4h'/h'').
+    Areas and loads per A0 (loads in units of E*), lengths in the path's units; non-finite
+    values (no attraction, no pull-off) print as null. ``kappa`` is the ratio
+    h'rms E* A_rep/N at the target area, ``kappa_fit`` the slope of A_rep(N): two
+    quantities. ``sticky``/``verdict``: κ < 0 at the target area (the pull-off force is
+    reported beside it). The predicted_* keys are Pastewka & Robbins' Eqs. 6, 7 and 10
+    for the path's surface and interaction (with the measured κ_rep and d_rep;
+    *_from_curvature: d_rep = 4h'/h''; *_continuum: κ_rep = 2). kappa_rep_hard_wall(_corrected)
+    and band_width: the hard wall on the same surface. Exit code 3 if the steps around
+    the target area did not converge (unless --allow-unconverged), 2 on bad input.
     """
-    from ..analysis.path_analysis import analyze_path, load_path
+    from ..analysis.path_analysis import UnconvergedPathError, analyze_path, load_path
 
     ds = load_path(path_file)
-    summary = analyze_path(
-        ds, target_area=target_area, branch=branch, fit_max_area=fit_max_area
-    ).to_dict()
+    try:
+        result = analyze_path(
+            ds,
+            target_area=target_area,
+            branch=branch,
+            fit_max_area=fit_max_area,
+            allow_unconverged=allow_unconverged,
+            hard_wall_reference=hard_wall_reference,
+        )
+    except UnconvergedPathError as err:
+        click.echo(f"roughcontact: error: {err}", err=True)
+        sys.exit(3)
+    summary = result.to_dict()
     for message in summary["warnings"]:
         click.echo(f"roughcontact: warning: {message}", err=True)
     if as_json:

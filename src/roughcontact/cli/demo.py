@@ -3,7 +3,8 @@
 Generates the SPEC's default surface (H = 0.8, h'rms = 0.1, λs = 8 a0, λL = L/2),
 pushes it onto an elastic half-space (E* = 1) at increasing loads under load control,
 each state warm-started from the last, and reports A_rep/A0 against N/A0 and κ_rep at
-1 % repulsive area (Pastewka & Robbins 2014, Eq. 2; κ_rep ≈ 2 for non-adhesive contact).
+1 % repulsive area, from the site count and from the perimeter-corrected area (Pastewka &
+Robbins 2014, Eq. 2; the continuum hard-wall value is κ_rep ≈ 2).
 """
 
 from __future__ import annotations
@@ -54,6 +55,7 @@ def demo(*, size: int = 512, seed: int = 2014, loads=None, tol: float = 1e-8, pr
             {
                 "load": res.load,
                 "repulsive_area": res.repulsive_area,
+                "corrected_repulsive_area": res.corrected_repulsive_area,
                 "offset": res.offset,
                 "perimeter": res.perimeter,
                 "mean_gap": res.mean_gap,
@@ -82,6 +84,12 @@ def demo(*, size: int = 512, seed: int = 2014, loads=None, tol: float = 1e-8, pr
         load_1 = interpolate_at_area(areas, [r["load"] for r in rows], 0.01)
         out["kappa_rep"] = kappa(0.01, load_1, stats.rms_slope)
         out["load_at_1_percent"] = load_1
+        # the same with the perimeter-corrected area (Yastrebov et al. 2017): the
+        # estimate of the continuum area, free of the lattice's bias
+        corrected = [r["corrected_repulsive_area"] for r in rows]
+        out["kappa_rep_corrected"] = kappa(
+            0.01, interpolate_at_area(corrected, [r["load"] for r in rows], 0.01), stats.rms_slope
+        )
     except ValueError as err:
         out["kappa_rep"], out["kappa_rep_error"] = None, str(err)
     return out

@@ -68,7 +68,7 @@ def _load(source: Path):
 def figures(source, out_dir, formats, target_area, dpi):
     """Draw the paper's figures from DIR, a study directory or a collected .nc file.
 
-    Fig. 2 (area against load with the fits of κ), Fig. 3 (collapse plots) and Fig. 4
+    Fig. 2 (area against load with the fitted slopes κ_fit), Fig. 3 (collapse plots), Fig. 4
     (κ_att and A_rep/A_att against Eqs. 6-7) from the collected study; Fig. 1 (contact
     maps) when DIR is a study directory whose task files hold fields ([output] fields_at).
     """

@@ -14,6 +14,7 @@ from .._validate import ParameterError
 
 EXIT_BAD_INPUT = 2
 EXIT_NOT_CONVERGED = 3
+EXIT_TARGET_NOT_REACHED = 4
 
 
 def _fail(message: str, code: int = EXIT_BAD_INPUT):
@@ -50,6 +51,13 @@ def _interaction_options(f):
             help="w (energy per area, units of E* x length).",
         ),
         click.option(
+            "--adhesion-length",
+            "adhesion_length",
+            type=float,
+            default=None,
+            help="ℓa = w/E* (length, > 0): w = ℓa x --modulus; instead of --work-of-adhesion.",
+        ),
+        click.option(
             "--range",
             "range_",
             type=float,
@@ -77,13 +85,30 @@ def _interaction_options(f):
 INTERACTIONS = ["hardwall", "lj93smooth", "lj93", "exponential", "dugdale"]
 
 
-def _make_interaction(name, work, range_, stiffness, core_stiffness, modulus, pixel_size):
+def _make_interaction(
+    name, work, range_, stiffness, core_stiffness, modulus, pixel_size, adhesion_length=None
+):
     from .. import interactions as it
 
     def need(value, option):
         if value is None:
+            if option == "--work-of-adhesion":
+                option += " (or --adhesion-length)"
             raise ParameterError(f"--interaction {name} needs {option}")
         return value
+
+    if adhesion_length is not None:
+        if work is not None:
+            raise ParameterError(
+                "give --adhesion-length (ℓa = w/E*) or --work-of-adhesion (w), not both"
+            )
+        if not (math.isfinite(adhesion_length) and adhesion_length > 0):
+            raise ParameterError(
+                f"--adhesion-length must be > 0 and finite (length), got {adhesion_length!r}"
+            )
+        if name == "hardwall":
+            raise ParameterError("--interaction hardwall takes no --adhesion-length")
+        work = adhesion_length * modulus  # ℓa = w/E*
 
     unused = {"--stiffness": stiffness, "--core-stiffness": core_stiffness}
     allowed = {"lj93smooth": ("--stiffness",), "exponential": ("--core-stiffness",)}
@@ -223,7 +248,10 @@ def surface(
     pixel_size,
     as_json,
 ):
-    """Generate a self-affine surface, write it to OUT (.npy or text), print statistics."""
+    """Generate a self-affine surface, write it to OUT (.npy or text), print statistics.
+
+    The statistics include max_height and min_height (length) of the heights written.
+    """
     from ..surfaces import save_heights, self_affine, statistics
 
     if (rms_slope is None) == (rms_height is None):
@@ -241,6 +269,8 @@ def surface(
     )
     path = save_heights(out, h)
     stats = statistics(h, pixel_size=pixel_size).to_dict()
+    stats["max_height"] = float(h.max())  # length: the summit, first contact at d = max(h)
+    stats["min_height"] = float(h.min())
     stats["path"] = str(path)
     stats["shape"] = list(h.shape)
     if as_json:
@@ -278,6 +308,7 @@ def contact(
     dtype,
     interaction,
     work,
+    adhesion_length,
     range_,
     stiffness,
     core_stiffness,
@@ -296,7 +327,7 @@ def contact(
     h = load_heights(surface_file)
     sub = _substrate(h.shape, modulus, pixel_size, thickness, poisson, base)
     law = _make_interaction(
-        interaction, work, range_, stiffness, core_stiffness, modulus, pixel_size
+        interaction, work, range_, stiffness, core_stiffness, modulus, pixel_size, adhesion_length
     )
     res = solve(
         h, sub, law, load=load, offset=offset, tol=tol, max_iter=max_iter, device=device,
@@ -312,14 +343,69 @@ def contact(
     if as_json:
         click.echo(json.dumps(summary))
     else:
+        units = _units(modulus, pixel_size)
         for k, v in summary.items():
-            click.echo(f"{k:>16}: {v}")
+            click.echo(_line(k, v, units.get(k), 16))
     if not res.converged:
         _fail(
             f"solver did not converge: {res.message} "
             f"(residual {res.residual:.3g} > tol {res.tol:g})",
             EXIT_NOT_CONVERGED,
         )
+
+
+def _units(modulus, pixel_size) -> dict:
+    """The unit, in words, of every number the text output prints (lattice units: 1, 1)."""
+    length = "length, a0 units" if pixel_size == 1 else f"length, units of a0 = {pixel_size:g}"
+    pressure = "N/A0, units of E*" if modulus == 1 else f"N/A0, pressure, units of E* = {modulus:g}"
+    area = "fraction of A0"
+    inverse_length = "per A0, 1/length" + ("" if pixel_size == 1 else f" (a0 = {pixel_size:g})")
+    return {
+        "offset": length,
+        "mean_gap": length,
+        "load": pressure,
+        "repulsive_load": pressure,
+        "attractive_load": pressure,
+        "pull_off": pressure,
+        "repulsive_area": area,
+        "attractive_area": area,
+        "corrected_repulsive_area": area,
+        "perimeter": inverse_length,
+        "perimeter_edges": "nearest-neighbour bonds",
+        "residual": "the solver's convergence measure",
+        "solve_seconds": "s",
+        "jumps": "step indices",
+    }
+
+
+def _line(key, value, unit, width) -> str:
+    """``key: value (unit)`` for the text output."""
+    return f"{key:>{width}}: {value}" + (f" ({unit})" if unit else "")
+
+
+#: The most steps ``roughcontact path`` takes (approach; the retraction doubles it).
+MAX_STEPS = 100_000
+OFFSET_UNITS = ("absolute", "length", "rms_height", "bearing_area")
+
+
+def _path_values(option, start, stop, step):
+    """START, START ± |STEP|, ... up to STOP (inclusive), or a one-line ParameterError."""
+    import numpy as np
+
+    if not all(math.isfinite(v) for v in (start, stop, step)):
+        raise ParameterError(
+            f"{option} START STOP STEP must be finite numbers, got {start:g} {stop:g} {step:g}"
+        )
+    if step == 0:
+        raise ParameterError(f"{option} STEP must be non-zero")
+    span = abs(stop - start) / abs(step)
+    if not span < MAX_STEPS:
+        raise ParameterError(
+            f"{option} {start:g} {stop:g} {step:g} gives more than {MAX_STEPS} steps "
+            f"(accepted: at most {MAX_STEPS}); use a larger STEP"
+        )
+    count = int(math.floor(span + 1e-9)) + 1
+    return start + np.sign(stop - start or 1) * abs(step) * np.arange(count)
 
 
 @main.command()
@@ -330,7 +416,18 @@ def contact(
     type=float,
     default=None,
     metavar="START STOP STEP",
-    help="Approach offsets START, START-|STEP|, ... down to STOP (inclusive).",
+    help="Approach values START, START ± |STEP|, ... towards STOP (inclusive), in the units "
+    "of --offset-unit (absolute: offsets d, length; decreasing d approaches).",
+)
+@click.option(
+    "--offset-unit",
+    type=click.Choice(OFFSET_UNITS),
+    default="absolute",
+    show_default=True,
+    help="absolute: --offsets are d (length). length, rms_height: relative to the first "
+    "contact max(h) + d0 (d0: a0 for the LJ walls, else 0) in units of length or of the "
+    "rms height (negative: into contact). bearing_area: fractions in [0, 1] of A0 that "
+    "the undeformed surfaces overlap, growing into contact (as in studies' [path] unit).",
 )
 @click.option(
     "--loads",
@@ -339,6 +436,14 @@ def contact(
     default=None,
     metavar="START STOP STEP",
     help="Load control: mean pressures from START to STOP by STEP.",
+)
+@click.option(
+    "--until-area",
+    type=float,
+    default=None,
+    metavar="A",
+    help="Stop the approach at the first step with A_rep/A0 >= A (0 < A <= 1); STOP is "
+    "then the farthest value tried. Exit code 4 if STOP comes first.",
 )
 @click.option(
     "--retract/--no-retract",
@@ -367,7 +472,9 @@ def contact(
 def path(
     surface_file,
     offsets,
+    offset_unit,
     loads,
+    until_area,
     retract,
     modulus,
     pixel_size,
@@ -380,6 +487,7 @@ def path(
     dtype,
     interaction,
     work,
+    adhesion_length,
     range_,
     stiffness,
     core_stiffness,
@@ -393,7 +501,10 @@ def path(
     The file is rewritten atomically with the steps done so far every
     --checkpoint-seconds, so a crash or kill loses at most that much work; Ctrl-C writes
     the finished steps and exits with code 130. Exit code 3 if any state did not
-    converge, 2 on bad input, 1 if a step failed (the steps before it are in the file).
+    converge, 4 if --until-area was not reached by STOP (the file is written), 2 on bad
+    input, 1 if a step failed (the steps before it are in the file). pull_off is null
+    when it was not measured: without --retract, or when the retraction never separated
+    the surfaces (its last step still has repulsive contact).
     """
     import numpy as np
 
@@ -402,16 +513,29 @@ def path(
 
     if (offsets is None) == (loads is None):
         raise ParameterError("give exactly one of --offsets or --loads")
+    option = "--offsets" if offsets is not None else "--loads"
+    if loads is not None and offset_unit != "absolute":
+        raise ParameterError(f"--offset-unit {offset_unit} applies to --offsets only")
+    if until_area is not None and not (0 < until_area <= 1):
+        raise ParameterError(f"--until-area must be in (0, 1] (A_rep/A0), got {until_area:g}")
     start, stop, step = offsets if offsets is not None else loads
-    if step == 0:
-        raise ParameterError("STEP must be non-zero")
-    count = int(math.floor(abs(stop - start) / abs(step) + 1e-9)) + 1
-    values = start + np.sign(stop - start or 1) * abs(step) * np.arange(count)
+    values = _path_values(option, start, stop, step)
+    if offset_unit == "bearing_area" and not (0 <= start <= 1 and 0 <= stop <= 1):
+        raise ParameterError(
+            f"--offsets START and STOP must be in [0, 1] with --offset-unit bearing_area "
+            f"(fractions of A0), got {start:g} {stop:g}"
+        )
     h = load_heights(surface_file)
     sub = _substrate(h.shape, modulus, pixel_size, thickness, poisson, base)
     law = _make_interaction(
-        interaction, work, range_, stiffness, core_stiffness, modulus, pixel_size
+        interaction, work, range_, stiffness, core_stiffness, modulus, pixel_size, adhesion_length
     )
+    if offsets is not None and offset_unit != "absolute":
+        from ..solvers.offsets import relative_offsets
+
+        given, values = values, relative_offsets(h, values, offset_unit, law, pixel_size)
+    else:
+        given = values
     from tqdm import tqdm
 
     bar = tqdm(
@@ -444,6 +568,7 @@ def path(
             dtype=dtype,
             checkpoint=lambda partial: _write_path(partial, output, surface_file),
             checkpoint_seconds=checkpoint_seconds,
+            until_area=until_area,
             **kwargs,
         )
     except (PathError, PathInterrupted) as err:
@@ -452,20 +577,50 @@ def path(
         done = f"the {err.partial.sizes['step']} steps before it are in {output}"
         _fail(f"{err} ({done})", 130 if isinstance(err, PathInterrupted) else 1)
     bar.close()
+    if offsets is not None:
+        ds.attrs["offset_unit"] = offset_unit
     _write_path(ds, output, surface_file)
+    pull_off = float(ds.attrs["pull_off"])
     summary = {
-        "pull_off": float(ds.attrs["pull_off"]) if retract else None,
+        "pull_off": pull_off if math.isfinite(pull_off) else None,
         "steps": int(ds.sizes["step"]),
         "all_converged": bool(ds.attrs["all_converged"]),
         "solve_seconds": float(ds["solve_seconds"].sum()),
         "jumps": [int(i) for i in np.flatnonzero(ds["jump"].values)],
         "output": str(output),
     }
-    click.echo(
-        json.dumps(summary) if as_json else "\n".join(f"{k:>14}: {v}" for k, v in summary.items())
-    )
+    if as_json:
+        click.echo(json.dumps(summary))
+    else:
+        units = _units(modulus, pixel_size)
+        for k, v in summary.items():
+            if k == "pull_off" and v is None:
+                why = "the surfaces never separated" if retract else "no --retract"
+                v, units[k] = "null", f"not measured: {why}"
+            click.echo(_line(k, v, units.get(k), 14))
+    missed = None
+    if until_area is not None and not ds.attrs["until_area_reached"]:
+        approach = ds["branch"].values == "approach"
+        area = ds["repulsive_area"].values[approach]
+        i = int(np.argmax(area))
+        where = (
+            f"offset {float(ds['offset'].values[i]):.6g} (length)"
+            if offsets is not None
+            else f"load {float(ds['load'].values[i]):.6g} (N/A0)"
+        )
+        if offsets is not None and offset_unit != "absolute":
+            where = where[:-1] + f"; {given[i]:g} in --offset-unit {offset_unit})"
+        missed = (
+            f"--until-area {until_area:g} not reached: the largest A_rep/A0 was "
+            f"{float(area[i]):.6g}, at {where}; extend STOP of {option} (the path is in "
+            f"{output})"
+        )
     if not summary["all_converged"]:
+        if missed:
+            click.echo(f"roughcontact: error: {missed}", err=True)
         _fail("some states did not converge (see the 'converged' variable)", EXIT_NOT_CONVERGED)
+    if missed:
+        _fail(missed, EXIT_TARGET_NOT_REACHED)
 
 
 def _write_path(ds, output, surface_file):
@@ -511,6 +666,11 @@ def demo(size, seed, study_size, seeds, output, as_json):
     """
     from .demo import demo as run
 
+    if seeds < 1:  # checked before any work
+        raise ParameterError(f"--seeds must be >= 1, got {seeds}")
+    if study_size and study_size < 8:
+        raise ParameterError(f"--study-size must be 0 (no study) or >= 8, got {study_size}")
+
     def progress(i, n, res):
         if not as_json:
             click.echo(
@@ -525,8 +685,6 @@ def demo(size, seed, study_size, seeds, output, as_json):
     if study_size:
         from .demo_study import run_demo_study
 
-        if seeds < 1:
-            raise ParameterError(f"--seeds must be >= 1, got {seeds}")
         study = run_demo_study(
             output, size=study_size, seeds=range(1, seeds + 1), progress=not as_json
         )
@@ -549,8 +707,9 @@ def demo(size, seed, study_size, seeds, output, as_json):
         )
     if out["kappa_rep"] is not None:
         click.echo(
-            f"kappa_rep at A_rep = 1 % of A0: {out['kappa_rep']:.3f} "
-            "(Pastewka & Robbins 2014: close to 2)"
+            f"kappa_rep at A_rep = 1 % of A0: {out['kappa_rep']:.3f} (site count), "
+            f"{out['kappa_rep_corrected']:.3f} (perimeter-corrected area); the continuum "
+            "hard-wall value the paper's 'kappa_rep ~ 2' refers to"
         )
     else:
         click.echo(f"kappa_rep: {out['kappa_rep_error']}")
@@ -559,6 +718,9 @@ def demo(size, seed, study_size, seeds, output, as_json):
         click.echo("\nAdhesive study (smoothed 9-3 LJ wall), measured at A_rep = 1 % of A0:")
         for line in study["table_markdown"]:
             click.echo(line)
+        click.echo("")
+        for line in study["summary"]:
+            click.echo(f"* {line}")
         click.echo(f"report: {study['report']}  figures: {Path(study['report']).parent}/figures")
         if study["failed"]:
             _fail(f"{study['failed']} study tasks failed (see {output}/tasks)", 1)

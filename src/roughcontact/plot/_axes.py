@@ -34,15 +34,22 @@ def log_axes(ax, xlim, ylim):
         axis.set_minor_formatter(NullFormatter())
 
 
-def loglog(ax, xs, ys, slope=1.0, label=None):
-    """Log axes over the data and the line y = slope·x across them (``gid="theory"``)."""
+def loglog(ax, xs, ys, slope=1.0, label=None, *, also=()):
+    """Log axes over the data and the line y = slope·x across them (``gid="theory"``).
+
+    ``also``: further slopes whose lines y = s·x must fit in the y-range (reference lines
+    drawn by the caller). Returns the x-limits (the decades of the data), or ``None``
+    when there is no data (then the axes say so).
+    """
     x = np.concatenate([np.ravel(v) for v in xs]) if xs else np.zeros(0)
     y = np.concatenate([np.ravel(v) for v in ys]) if ys else np.zeros(0)
     if x.size == 0:
         log_axes(ax, (0.1, 10.0), (0.1, 10.0))
         ax.text(0.5, 0.5, "no data", transform=ax.transAxes, ha="center", color="0.5")
-        return
+        return None
     xlim = decades(x, y / slope)
-    log_axes(ax, xlim, decades(y, slope * np.array(xlim)))
+    slopes = np.array([slope, *also], dtype=float)
+    log_axes(ax, xlim, decades(y, np.outer(slopes, xlim)))
     line = np.geomspace(*xlim, 50)
     ax.plot(line, slope * line, "-", color="0.4", lw=1, gid="theory", label=label, zorder=0)
+    return xlim

@@ -39,8 +39,17 @@ ADHESION_KEYS = (
     "stiffness",
     "core_stiffness",
 )
-#: Short names of the parameters in titles.
-LABELS = {"hurst": "H", "rms_slope": "h′rms", "short_cutoff": "λs/a0", "size": "n", "seed": "seed"}
+#: Mathtext symbols (without the ``$``) of the parameters in titles, captions and keys.
+SYMBOLS = {
+    "hurst": "H",
+    "adhesion_length": r"\ell_a/a_0",
+    "rms_slope": r"h'_\mathrm{rms}",
+    "short_cutoff": r"\lambda_s/a_0",
+    "size": "n",
+    "seed": r"\mathrm{seed}",
+}
+#: Typeset names of the parameters in titles (matplotlib mathtext).
+LABELS = {k: f"${SYMBOLS[k]}$" for k in ("hurst", "rms_slope", "short_cutoff", "size", "seed")}
 # alternatives, first found wins: the measured slope is what the analysis normalised with
 SLOPE = ("measured_rms_slope", "rms_slope")
 ADHESION = ("adhesion_length", "work_of_adhesion")
@@ -143,8 +152,55 @@ def same(a, b) -> bool:
     return fa == fb or (math.isnan(fa) and math.isnan(fb))
 
 
+def param_text(key: str, value) -> str:
+    """``"$<symbol> = <value>$"`` of a parameter (mathtext), e.g. ``$H = 0.8$``."""
+    try:
+        value = f"{float(value):g}"
+    except (TypeError, ValueError):
+        value = str(value)
+    return f"${SYMBOLS.get(key, key)} = {value}$"
+
+
 def la_label(la: float) -> str:
-    return "non-adhesive" if not math.isfinite(la) or la <= 0 else f"ℓa/a0 = {la:g}"
+    """``$\\ell_a/a_0 = ...$`` (mathtext), or ``non-adhesive`` for NaN / non-positive ℓa/a0."""
+    if not math.isfinite(la) or la <= 0:
+        return "non-adhesive"
+    return param_text("adhesion_length", la)
+
+
+def harmonic_mean(ds, name) -> tuple[float, int]:
+    """``(1/mean(1/x), count)`` of the per-task variable ``name`` over the usable tasks.
+
+    Only finite positive values count (1/κ is the quantity that adds up over seeds and
+    surfaces, never κ itself). ``(nan, 0)`` when the variable is missing or no usable
+    task has a finite positive value.
+    """
+    if not _has(ds, name):
+        return math.nan, 0
+    x = np.asarray(ds[name].values, dtype=float).reshape(-1)[usable(ds)]
+    x = x[np.isfinite(x) & (x > 0)]
+    if x.size == 0:
+        return math.nan, 0
+    return float(1.0 / np.mean(1.0 / x)), int(x.size)
+
+
+def kappa_rep_choice(ds, given=None) -> tuple[float, str]:
+    """The κ_rep of the Eq. 2 line and the sticky region, and how it was obtained.
+
+    ``given`` (a positive float) wins (``"given"``); else the measured
+    :func:`harmonic_mean` of ``kappa_rep`` (``"measured"``); else, when the dataset has
+    no finite positive ``kappa_rep``, the continuum hard-wall value
+    :data:`~roughcontact.theory.pastewka_robbins.KAPPA_REP` (``"continuum"``).
+    """
+    from .._validate import positive
+    from ..theory.pastewka_robbins import KAPPA_REP
+
+    if given is not None:
+        return positive("kappa_rep", given), "given"
+    value, _ = harmonic_mean(ds, "kappa_rep")
+    if math.isfinite(value):
+        return value, "measured"
+    return KAPPA_REP, "continuum"
 
 
 class TaskStyle:
@@ -152,16 +208,20 @@ class TaskStyle:
 
     Values the paper used get its symbols (H = 0.3, 0.5, 0.8: triangle, square, circle;
     the smallest, middle, largest ℓa black, blue, red; the smallest h'rms filled); other
-    values get the next symbols in order. Sizes grow with the rank of λs.
+    values get the next symbols in order. Sizes grow with the rank of λs. The symbols are
+    assigned over every usable task of the dataset, so a task looks the same in every
+    figure; :meth:`legend_handles` and :meth:`caption` describe the tasks actually drawn.
     """
 
     def __init__(self, ds):
-        self.hurst = values(ds, "hurst") if _has(ds, "hurst") else np.full(ds.sizes["task"], 0.8)
+        n = ds.sizes["task"]
+        self.hurst = values(ds, "hurst") if _has(ds, "hurst") else np.full(n, 0.8)
         a0 = values(ds, "pixel_size") if _has(ds, "pixel_size") else 1.0
         self.la = adhesion_length(ds) / a0  # ℓa/a0, the paper's parameter
         self.slope = values(ds, "rms_slope")
         self.cutoff = values(ds, "short_cutoff") if _has(ds, "short_cutoff") else self.slope * 0
-        use = usable(ds)
+        self.size = values(ds, "size") if _has(ds, "size") else np.full(n, np.nan)
+        self._use = use = usable(ds)
         self._h = _unique(self.hurst[use])
         self._la = _unique(self.la[use][np.isfinite(self.la[use]) & (self.la[use] > 0)])
         self._s = _unique(self.slope[use])
@@ -187,26 +247,72 @@ class TaskStyle:
             "linestyle": "none",
         }
 
-    def legend_handles(self):
-        """Proxy artists explaining the symbol code."""
+    def levels(self, tasks=None) -> dict:
+        """Distinct values of H, ℓa/a0 (NaN: non-adhesive), h'rms, λs/a0, n over ``tasks``.
+
+        ``tasks``: indices of the drawn tasks (default: every usable task).
+        """
+        idx = self._use if tasks is None else np.asarray(sorted(set(tasks)), dtype=int)
+        la = self.la[idx]
+        adhesive = _unique(la[np.isfinite(la) & (la > 0)])
+        return {
+            "hurst": _unique(self.hurst[idx]),
+            "adhesion_length": adhesive + ([math.nan] if np.any(~(la > 0)) else []),
+            "rms_slope": _unique(self.slope[idx]),
+            "short_cutoff": _unique(self.cutoff[idx]),
+            "size": _unique(self.size[idx]),
+        }
+
+    def legend_handles(self, tasks=None):
+        """Proxy artists explaining the symbol code of the drawn ``tasks``.
+
+        A parameter gets keys only where it takes more than one value among ``tasks``
+        (default: every usable task); the constant ones are in :meth:`caption`.
+        """
         from matplotlib.lines import Line2D
 
         def proxy(label, **kw):
             kw = {"marker": "o", "color": "0.3", "markersize": 6, "linestyle": "none", **kw}
             return Line2D([], [], label=label, **kw)
 
-        handles = [proxy(f"H = {h:g}", marker=self._markers[h]) for h in self._h]
-        handles += [proxy(la_label(la), color=self.colour(la)) for la in self._la]
-        if np.any(~(self.la > 0)):
-            handles.append(proxy("non-adhesive", color=NON_ADHESIVE))
-        handles += [
-            proxy(f"h'rms = {s:g}", markerfacecolor="0.3" if k == 0 else "none")
-            for k, s in enumerate(self._s)
-        ]
-        handles += [
-            proxy(f"λs/a0 = {c:g}", markersize=4.0 + 1.5 * k) for k, c in enumerate(self._c)
-        ]
+        lv = self.levels(tasks)
+        handles = []
+        if len(lv["hurst"]) > 1:
+            handles += [
+                proxy(param_text("hurst", h), marker=self._markers.get(h, "o")) for h in lv["hurst"]
+            ]
+        if len(lv["adhesion_length"]) > 1:
+            handles += [proxy(la_label(la), color=self.colour(la)) for la in lv["adhesion_length"]]
+        if len(lv["rms_slope"]) > 1:
+            handles += [
+                proxy(
+                    param_text("rms_slope", s),
+                    markerfacecolor="0.3" if _rank(self._s, s) == 0 else "none",
+                )
+                for s in lv["rms_slope"]
+            ]
+        if len(lv["short_cutoff"]) > 1:
+            handles += [
+                proxy(param_text("short_cutoff", c), markersize=4.0 + 1.5 * _rank(self._c, c))
+                for c in lv["short_cutoff"]
+            ]
         return handles
+
+    def caption(self, tasks=None) -> str:
+        """One line (mathtext) of the parameters constant over ``tasks``.
+
+        E.g. ``$H = 0.8$, $h'_\\mathrm{rms} = 0.1$, $\\lambda_s/a_0 = 4$, $n = 256$``; ``""``
+        when none is constant.
+        """
+        parts = []
+        for key, vals in self.levels(tasks).items():
+            if len(vals) != 1:
+                continue
+            if key == "adhesion_length":
+                parts.append(la_label(vals[0]))
+            elif math.isfinite(vals[0]):
+                parts.append(param_text(key, vals[0]))
+        return ", ".join(parts)
 
 
 def _unique(a) -> list:

@@ -5,16 +5,27 @@ NetCDF file opened with xarray) and returns a :class:`matplotlib.figure.Figure`;
 is drawn on screen and no global pyplot state is touched. Missing variables raise
 :class:`~roughcontact.ParameterError` naming them. Areas and loads are per A0; lengths in
 units of a0; loads normalised by E* (and h'rms where the paper does). Plotted curves carry
-a ``gid``: ``"data:<task>"``, ``"fit:<task>"``, ``"task:<task>"``, ``"theory"``, ``"sticky"``.
+a ``gid``: ``"data:<task>"``, ``"fit:<task>"``, ``"task:<task>"``, ``"theory"``, ``"sticky"``,
+and the κ_rep reference lines ``"kappa_rep_continuum"`` (κ_rep = 2, dashed) and
+``"kappa_rep_hard_wall"`` (dotted). Symbols are typeset with matplotlib mathtext; legends
+sit outside the axes; the symbol key lists only the parameters that vary among the drawn
+tasks, the constant ones are in the title.
 
 * :func:`figure1` (in :mod:`.maps`): repulsive (orange) and attractive (black) sites.
 * :func:`figure2`: :math:`A_{rep}/A_0` against :math:`N/(A_0 h'_{rms} E^*)` on the
-  approach, one surface, several ℓa, with the fitted lines of slope κ (``kappa_fit``).
+  approach, one surface, several ℓa, with the fitted lines of slope
+  :math:`\kappa_{fit}` (``kappa_fit``; not ``kappa``, the ratio
+  :math:`h'_{rms}E^*A_{rep}/N` at the target area).
 * :func:`figure3`: the collapse plots, Eq. 4 (:math:`N_{att}` against
   :math:`(w/\Delta r) A_{att}`), Eq. 2 (:math:`N_{rep}/(h'_{rms}E^*)` against
-  :math:`A_{rep}`, line of slope 1/κ_rep) and :math:`P\,d_{rep}/\pi` against :math:`A_{rep}`.
+  :math:`A_{rep}`, line of slope 1/κ_rep, κ_rep measured) and :math:`P\,d_{rep}/\pi`
+  against :math:`A_{rep}`.
 * :func:`figure4`: measured :math:`A_{rep}/A_{att}` and :math:`\kappa_{att}` against
-  Eqs. 6 and 7, sticky region (:math:`\kappa_{att} < \kappa_{rep}`) shaded.
+  Eqs. 6 and 7, sticky region (:math:`\kappa_{att} < \kappa_{rep}`, κ_rep measured)
+  shaded.
+
+The measured κ_rep is :math:`1/\langle 1/\kappa_{rep}\rangle` over the usable tasks with
+a finite positive ``kappa_rep`` (1/κ adds up over seeds; κ itself is never averaged).
 """
 
 from __future__ import annotations
@@ -24,13 +35,61 @@ from pathlib import Path
 
 import numpy as np
 
-from .._validate import ParameterError, positive
+from .._validate import ParameterError
 from ..theory import pastewka_robbins as pr
 from . import _data as D
 from ._axes import decades, figure, log_axes, loglog
 from .maps import figure1
 
 __all__ = ["figure1", "figure2", "figure3", "figure4", "save_figures"]
+
+#: Typeset symbols of the axis labels and legends (matplotlib mathtext).
+AREA = r"$A_\mathrm{rep}/A_0$"
+LOAD = r"$N/(A_0 h'_\mathrm{rms} E^*)$"
+KAPPA_FIT = r"\kappa_\mathrm{fit}"
+KAPPA_REP = r"\kappa_\mathrm{rep}"
+D_REP_TEXT = {
+    "measured": r"$d_\mathrm{rep} = \pi A_\mathrm{rep}/P$ (measured)",
+    "predicted": r"$d_\mathrm{rep} = 4h'_\mathrm{rms}/h''_\mathrm{rms}$",
+}
+HOW = {"measured": "measured", "given": "given", "continuum": "continuum, none measured"}
+LEGEND = {"fontsize": 8, "frameon": False}
+
+
+def _kappa_rep_text(value, how) -> str:
+    return rf"${KAPPA_REP} = {value:.3g}$ ({HOW[how]})"
+
+
+def _references(ds):
+    """``[(gid, κ_rep, label, line style)]``: the continuum κ_rep = 2 and, when the
+    dataset has finite values, the measured hard-wall reference ``kappa_rep_hard_wall``."""
+    refs = [
+        (
+            "kappa_rep_continuum",
+            pr.KAPPA_REP,
+            rf"continuum hard wall, ${KAPPA_REP} = {pr.KAPPA_REP:g}$",
+            {"linestyle": "--", "color": "0.25", "lw": 1.0},
+        )
+    ]
+    hard, _ = D.harmonic_mean(ds, "kappa_rep_hard_wall")
+    if math.isfinite(hard):
+        refs.append(
+            (
+                "kappa_rep_hard_wall",
+                hard,
+                rf"hard wall on these surfaces, ${KAPPA_REP} = {hard:.3g}$",
+                {"linestyle": ":", "color": "#8c510a", "lw": 1.5},
+            )
+        )
+    return refs
+
+
+def _key(fig, style, tasks):
+    """The symbol key (varied parameters only) outside the axes, right; the caption."""
+    handles = style.legend_handles(tasks)
+    if handles:
+        fig.legend(handles=handles, loc="outside right upper", title="symbols", **LEGEND)
+    return style.caption(tasks)
 
 
 def figure2(dataset, *, select=None, fit_max_area=None):
@@ -45,16 +104,19 @@ def figure2(dataset, *, select=None, fit_max_area=None):
         Parameter values (coordinates on ``task``) of the tasks to show. Default: the
         surface, substrate and seed of the first finished task, every interaction.
     fit_max_area : float, optional
-        Upper end of the fit range in :math:`A_{rep}/A_0` (default: the study's
-        ``analysis.fit_max_area``, else 0.05).
+        Upper end of the fit range in :math:`A_{rep}/A_0` (dimensionless; default: the
+        study's ``analysis.fit_max_area``, else 0.05).
 
     Returns
     -------
     matplotlib.figure.Figure
-        x: :math:`N/(A_0 h'_{rms} E^*)`, y: :math:`A_{rep}/A_0` on the approach branch. The
-        fit of each task is the line of slope ``kappa_fit`` through the centroid of its
-        points with :math:`0 < A_{rep}/A_0 \le` ``fit_max_area`` (the least-squares line of
-        the path analysis), drawn over their load range.
+        x: :math:`N/(A_0 h'_{rms} E^*)`, y: :math:`A_{rep}/A_0` (both dimensionless) on
+        the approach branch. The fit of each task is the line of slope ``kappa_fit``
+        through the centroid of its points with :math:`0 < A_{rep}/A_0 \le`
+        ``fit_max_area`` (the least-squares line of the path analysis), drawn over their
+        load range. The legend (outside the axes, right) gives ℓa/a0 and the fitted slope
+        as :math:`\kappa_{fit}`, never as κ (which is the ratio at the target area); the
+        title names the surface (the values shared by the shown tasks).
     """
     D.require(
         dataset,
@@ -66,20 +128,27 @@ def figure2(dataset, *, select=None, fit_max_area=None):
     kappa, top = D.values(ds, "kappa_fit"), D.fit_max_area(ds, fit_max_area)
     style = D.TaskStyle(ds)
     la = style.la
-    first = ds.isel(task=tasks[0])
-    surface = ", ".join(f"{v} = {float(first[k]):g}" for k, v in D.LABELS.items() if k in ds.coords)
-    fig = figure(6.4, 4.6)
+    surface = []
+    for key in D.LABELS:
+        if key in ds.coords:
+            vals = list(dict.fromkeys(f"{float(ds[key].values[i]):g}" for i in tasks))
+            surface.append(f"${D.SYMBOLS[key]} = {', '.join(vals)}$")
+    fig = figure(8.0, 4.6)
     ax = fig.add_subplot()
     ax.axhline(0.0, color="0.85", lw=0.8, gid="axis")
     ax.axvline(0.0, color="0.85", lw=0.8, gid="axis")
+    fitted = False
     for i in sorted(tasks, key=lambda j: (np.nan_to_num(la[j], nan=-1.0), j)):
         task, colour = str(ds["task"].values[i]), style.colour(la[i])
         c = D.curves(ds, i, ("load", "repulsive_area"))
         x, y = c["load"] / scale[i], c["repulsive_area"]
-        label = D.la_label(la[i]) + (f", κ = {kappa[i]:.3g}" if math.isfinite(kappa[i]) else "")
+        label = D.la_label(la[i])
+        if math.isfinite(kappa[i]):
+            label += rf", ${KAPPA_FIT} = {kappa[i]:.3g}$"
         ax.plot(x, y, "o-", ms=3, lw=0.8, color=colour, label=label, gid=f"data:{task}")
         in_fit = (y > 0) & (y <= top)
         if math.isfinite(kappa[i]) and in_fit.sum() >= 2:
+            fitted = True
             xf = np.array([x[in_fit].min(), x[in_fit].max()])
             intercept = float(np.mean(y[in_fit] - kappa[i] * x[in_fit]))
             ax.plot(
@@ -91,16 +160,24 @@ def figure2(dataset, *, select=None, fit_max_area=None):
                 color=colour,
                 gid=f"fit:{task}",
             )
-    ax.set_xlabel("external load  N / (A0 h′rms E*)")
-    ax.set_ylabel("true contact area  A_rep / A0")
+    ax.set_xlabel(f"external load  {LOAD}")
+    ax.set_ylabel(f"true contact area  {AREA}")
     ax.set_title(
-        f"Fig. 2: area–load relation on approach, lines: fits of slope κ\n{surface}", fontsize=9
+        f"Fig. 2: area–load relation on approach, lines: fits of slope ${KAPPA_FIT}$\n"
+        + ", ".join(surface),
+        fontsize=9,
     )
-    ax.legend(fontsize=8, loc="upper left")
+    handles, labels = ax.get_legend_handles_labels()
+    if fitted:
+        from matplotlib.lines import Line2D
+
+        handles.append(Line2D([], [], lw=2.5, alpha=0.5, color="0.4"))
+        labels.append(rf"fit, slope ${KAPPA_FIT}$, over $0 < A_\mathrm{{rep}}/A_0 \leq {top:g}$")
+    fig.legend(handles, labels, loc="outside right upper", **LEGEND)
     return fig
 
 
-def figure3(dataset, *, kappa_rep=pr.KAPPA_REP, d_rep="predicted"):
+def figure3(dataset, *, kappa_rep=None, d_rep="predicted"):
     r"""Fig. 3: the collapse of forces and areas over every task and contact area.
 
     Parameters
@@ -109,35 +186,43 @@ def figure3(dataset, *, kappa_rep=pr.KAPPA_REP, d_rep="predicted"):
         A collected study (per-step ``attractive_load``, ``attractive_area``,
         ``repulsive_load``, ``repulsive_area``, ``perimeter``, ``branch``; per task the
         adhesion length, ``range``, slope, ``contact_modulus``, d_rep, ``hurst``,
-        ``short_cutoff``).
-    kappa_rep : float
-        κ_rep of the Eq. 2 line in panel (b) (the paper: 2).
+        ``short_cutoff``; ``kappa_rep`` and ``kappa_rep_hard_wall`` when present).
+    kappa_rep : float, optional
+        κ_rep (dimensionless) of the Eq. 2 line in panel (b). Default ``None``: the
+        measured one, :math:`1/\langle 1/\kappa_{rep}\rangle` over the usable tasks with a
+        finite positive ``kappa_rep`` (the continuum 2 when there is none).
     d_rep : {"predicted", "measured"}
         Panel (c) normalisation: :math:`4h'_{rms}/h''_{rms}` (the paper) or the measured
-        :math:`\pi A_{rep}/P` at the target area.
+        :math:`\pi A_{rep}/P` at the target area (lengths in a0).
 
     Returns
     -------
     matplotlib.figure.Figure
         (a) :math:`N_{att}/(A_0E^*)` against :math:`(\ell_a/\Delta r) A_{att}/A_0` with
         Eq. 4 (y = x); (b) :math:`N_{rep}/(A_0h'_{rms}E^*)` against :math:`A_{rep}/A_0`
-        with Eq. 2 (y = x/κ_rep); (c) :math:`P d_{rep}/(\pi A_0)` against
-        :math:`A_{rep}/A_0` with y = x. Converged approach states with positive values;
-        symbols: :class:`~roughcontact.plot._data.TaskStyle`.
+        with Eq. 2 (y = x/κ_rep, ``gid="theory"``), the continuum y = x/2 dashed
+        (``"kappa_rep_continuum"``) and, when the dataset has it, the hard-wall reference
+        ``kappa_rep_hard_wall`` dotted (``"kappa_rep_hard_wall"``); (c)
+        :math:`P d_{rep}/(\pi A_0)` against :math:`A_{rep}/A_0` with y = x. Converged
+        approach states with positive values; symbols:
+        :class:`~roughcontact.plot._data.TaskStyle`. Legends below (lines) and right
+        (symbols, varied parameters only) of the axes; constant parameters in the title.
     """
     if d_rep not in D.D_REP:
         raise ParameterError(f"d_rep must be 'predicted' or 'measured', got {d_rep!r}")
     steps = ("attractive_load", "attractive_area", "repulsive_load", "repulsive_area", "perimeter")
     needs = ("branch", D.ADHESION, "range", D.SLOPE, "contact_modulus", D.D_REP[d_rep])
     D.require(dataset, (*steps, *needs, "hurst", "short_cutoff"), "Fig. 3")
-    ds, kappa_rep = dataset, positive("kappa_rep", kappa_rep)
+    ds = dataset
+    kr, how = D.kappa_rep_choice(ds, kappa_rep)
     la, dr = D.adhesion_length(ds), D.values(ds, "range")
     scale = D.values(ds, D.SLOPE) * D.values(ds, "contact_modulus")
     modulus, diameter = D.values(ds, "contact_modulus"), D.values(ds, D.D_REP[d_rep])
     style = D.TaskStyle(ds)
-    fig = figure(13.0, 4.8)
+    fig = figure(13.0, 5.4)
     axes = fig.subplots(1, 3)
     data = [([], []), ([], []), ([], [])]
+    drawn = []
     for i in D.usable(ds):
         task, st = str(ds["task"].values[i]), style(i)
         c = D.curves(ds, i, steps, converged_only=True)
@@ -152,45 +237,65 @@ def figure3(dataset, *, kappa_rep=pr.KAPPA_REP, d_rep="predicted"):
                 axes[k].plot(x[ok], y[ok], gid=f"task:{task}", **st)
                 data[k][0].append(x[ok])
                 data[k][1].append(y[ok])
-    loglog(axes[0], *data[0], label="Eq. 4: N_att = (w/Δr) A_att")
-    loglog(
+                drawn.append(i)
+    loglog(axes[0], *data[0], label=r"(a) Eq. 4: $N_\mathrm{att} = (w/\Delta r)\,A_\mathrm{att}$")
+    refs = _references(ds)
+    eq2 = r"(b) Eq. 2: $N_\mathrm{rep} = h'_\mathrm{rms} E^* A_\mathrm{rep}/\kappa_\mathrm{rep}$"
+    xlim = loglog(
         axes[1],
         *data[1],
-        slope=1.0 / kappa_rep,
-        label=f"Eq. 2: N_rep = h′rms E* A_rep / κ_rep, κ_rep = {kappa_rep:g}",
+        slope=1.0 / kr,
+        label=f"{eq2}, {_kappa_rep_text(kr, how)}",
+        also=[1.0 / r[1] for r in refs],
     )
-    loglog(axes[2], *data[2], label="A_rep = P d_rep / π")
-    which = "4h′rms/h″rms" if d_rep == "predicted" else "πA_rep/P at the target area"
+    if xlim is not None:
+        line = np.geomspace(*xlim, 50)
+        for gid, value, label, kw in refs:
+            axes[1].plot(line, line / value, gid=gid, label=f"(b) {label}", zorder=0.5, **kw)
+    loglog(axes[2], *data[2], label=r"(c) $A_\mathrm{rep} = P\,d_\mathrm{rep}/\pi$")
     labels = [
-        ("(ℓa/Δr) A_att / A0", "attractive force  N_att / (A0 E*)"),
-        ("repulsive area  A_rep / A0", "repulsive force  N_rep / (A0 h′rms E*)"),
-        ("repulsive area  A_rep / A0", f"P d_rep / (π A0),  d_rep = {which}"),
+        (
+            r"$(\ell_a/\Delta r)\,A_\mathrm{att}/A_0$",
+            r"attractive force  $N_\mathrm{att}/(A_0 E^*)$",
+        ),
+        (f"repulsive area  {AREA}", r"repulsive force  $N_\mathrm{rep}/(A_0 h'_\mathrm{rms} E^*)$"),
+        (f"repulsive area  {AREA}", r"$P\,d_\mathrm{rep}/(\pi A_0)$"),
     ]
-    for ax, (xl, yl), t in zip(
-        axes, labels, ("(a) Eq. 4", "(b) Eq. 2", "(c) perimeter"), strict=True
-    ):
+    titles = ("(a) Eq. 4", "(b) Eq. 2", f"(c) perimeter, {D_REP_TEXT[d_rep]}")
+    for ax, (xl, yl), t in zip(axes, labels, titles, strict=True):
         ax.set_xlabel(xl)
         ax.set_ylabel(yl)
         ax.set_title(t, fontsize=10)
-        if ax.get_legend_handles_labels()[0]:
-            ax.legend(fontsize=7, loc="upper left")
-    fig.legend(handles=style.legend_handles(), loc="outside right upper", fontsize=7)
+    handles, texts = [], []
+    for ax in axes:
+        h, t = ax.get_legend_handles_labels()
+        handles += h
+        texts += t
+    fig.legend(handles, texts, loc="outside lower center", ncols=2, **LEGEND)
+    caption = _key(fig, style, drawn)
+    title = "Fig. 3: collapse of forces and areas, converged approach states"
+    fig.suptitle(title + (f"\n{caption}" if caption else ""), fontsize=10)
     return fig
 
 
-def figure4(dataset, *, kappa_rep=pr.KAPPA_REP, d_rep="measured"):
+def figure4(dataset, *, kappa_rep=None, d_rep="measured"):
     r"""Fig. 4: measured :math:`A_{rep}/A_{att}` and :math:`\kappa_{att}` against Eqs. 6-7.
 
     Parameters
     ----------
     dataset : xarray.Dataset
         A collected study (per task ``area_ratio``, ``kappa_att``, d_rep, ``range``, the
-        adhesion length, slope, ``hurst``, ``short_cutoff``).
-    kappa_rep : float
-        κ_rep bounding the shaded sticky region :math:`\kappa_{att} < \kappa_{rep}` (2).
+        adhesion length, slope, ``hurst``, ``short_cutoff``; ``kappa_rep`` and
+        ``kappa_rep_hard_wall`` when present).
+    kappa_rep : float, optional
+        κ_rep (dimensionless) bounding the shaded sticky region
+        :math:`\kappa_{att} < \kappa_{rep}`. Default ``None``: the measured one,
+        :math:`1/\langle 1/\kappa_{rep}\rangle` over the usable tasks with a finite
+        positive ``kappa_rep`` (1/κ adds up over seeds; the continuum 2 when there is
+        none); a float overrides it.
     d_rep : {"measured", "predicted"}
         The d_rep inserted in Eqs. 6-7: measured :math:`\pi A_{rep}/P` or
-        :math:`4h'_{rms}/h''_{rms}`.
+        :math:`4h'_{rms}/h''_{rms}` (lengths in a0).
 
     Returns
     -------
@@ -198,23 +303,31 @@ def figure4(dataset, *, kappa_rep=pr.KAPPA_REP, d_rep="measured"):
         (a) :math:`A_{rep}/A_{att}` against :math:`u = h'_{rms} d_{rep}/(\pi\Delta r)`, the
         line is Eq. 6, :math:`(16/9\pi)^{1/3} u^{2/3}`; (b) :math:`\kappa_{att}` against
         :math:`X = (h'_{rms}\Delta r/\ell_a)\,u^{2/3}`, the line is Eq. 7,
-        :math:`(16/9\pi)^{1/3} X`; shaded: :math:`\kappa_{att} < \kappa_{rep}`. Tasks
-        without adhesion or a finite measured value are left out.
+        :math:`(16/9\pi)^{1/3} X`; shaded (``gid="sticky"``):
+        :math:`\kappa_{att} < \kappa_{rep}`; dashed (``"kappa_rep_continuum"``): the
+        continuum hard-wall κ_rep = 2; dotted (``"kappa_rep_hard_wall"``, only when the
+        dataset has finite ``kappa_rep_hard_wall``): its :math:`1/\langle 1/x\rangle`.
+        All quantities dimensionless. Tasks without adhesion or a finite measured value
+        are left out. Legends below (lines) and right (symbols, varied parameters only)
+        of the axes; constant parameters in the title.
     """
     if d_rep not in D.D_REP:
         raise ParameterError(f"d_rep must be 'measured' or 'predicted', got {d_rep!r}")
     needs = ("area_ratio", "kappa_att", D.D_REP[d_rep], "range", D.ADHESION, D.SLOPE)
     D.require(dataset, (*needs, "hurst", "short_cutoff"), "Fig. 4")
-    ds, kr = dataset, positive("kappa_rep", kappa_rep)
+    ds = dataset
+    kr, how = D.kappa_rep_choice(ds, kappa_rep)
+    refs = _references(ds)
     slope, dr, la = D.values(ds, D.SLOPE), D.values(ds, "range"), D.adhesion_length(ds)
     diameter = D.values(ds, D.D_REP[d_rep])
     u = slope * diameter / (math.pi * dr)
     X = slope * dr / la * u ** (2.0 / 3.0)
     measured = (D.values(ds, "area_ratio"), D.values(ds, "kappa_att"))
     style = D.TaskStyle(ds)
-    fig = figure(11.5, 4.8)
+    fig = figure(11.5, 5.6)
     axes = fig.subplots(1, 2)
     points = [([], []), ([], [])]
+    drawn = []
     for i in D.usable(ds):
         task = str(ds["task"].values[i])
         for k, x in enumerate((u[i], X[i])):
@@ -223,6 +336,8 @@ def figure4(dataset, *, kappa_rep=pr.KAPPA_REP, d_rep="measured"):
                 axes[k].plot([x], [y], gid=f"task:{task}", **style(i))
                 points[k][0].append(x)
                 points[k][1].append(y)
+                drawn.append(i)
+    levels = [kr, *(r[1] for r in refs)]
     for k, ax in enumerate(axes):
         xs, ys = (np.asarray(v, dtype=float) for v in points[k])
         if xs.size == 0:
@@ -232,10 +347,12 @@ def figure4(dataset, *, kappa_rep=pr.KAPPA_REP, d_rep="measured"):
         xlim = decades(xs)
         grid = np.geomspace(*xlim, 100)
         if k == 0:  # Eq. 6 with h'rms = Δr = 1: u = d/π
-            theory, label = pr.area_ratio(1.0, math.pi * grid, 1.0), "Eq. 6"
+            theory = pr.area_ratio(1.0, math.pi * grid, 1.0)
+            label = r"(a) Eq. 6: $A_\mathrm{rep}/A_\mathrm{att} = (16/9\pi)^{1/3}\,u^{2/3}$"
         else:  # Eq. 7 with h'rms = Δr = ℓa = 1: X = (d/π)^(2/3)
-            theory, label = pr.kappa_att(1.0, math.pi * grid**1.5, 1.0, 1.0), "Eq. 7"
-        ylim = decades(ys, theory, [kr] if k else [])
+            theory = pr.kappa_att(1.0, math.pi * grid**1.5, 1.0, 1.0)
+            label = r"(b) Eq. 7: $\kappa_\mathrm{att} = (16/9\pi)^{1/3}\,X$"
+        ylim = decades(ys, theory, levels if k else [])
         log_axes(ax, xlim, ylim)
         ax.plot(grid, theory, "-", color="0.3", lw=1.2, gid="theory", label=label, zorder=0)
         if k == 1:
@@ -247,17 +364,33 @@ def figure4(dataset, *, kappa_rep=pr.KAPPA_REP, d_rep="measured"):
                 alpha=0.15,
                 lw=0,
                 gid="sticky",
-                label=f"sticky: κ_att < κ_rep = {kr:g}",
+                label=r"(b) sticky: $\kappa_\mathrm{att} < \kappa_\mathrm{rep} = "
+                + f"{kr:.3g}$ ({HOW[how]})",
             )
-        ax.legend(fontsize=8, loc="upper left")
-    src = "measured πA_rep/P" if d_rep == "measured" else "4h′rms/h″rms"
-    axes[0].set_xlabel(f"h′rms d_rep / (π Δr),  d_rep = {src}")
-    axes[0].set_ylabel("A_rep / A_att (measured)")
+            for gid, value, text, kw in refs:
+                ax.axhline(value, gid=gid, label=f"(b) {text}", zorder=0.5, **kw)
+    axes[0].set_xlabel(
+        rf"$u = h'_\mathrm{{rms}} d_\mathrm{{rep}}/(\pi\,\Delta r)$,  {D_REP_TEXT[d_rep]}"
+    )
+    axes[0].set_ylabel(r"$A_\mathrm{rep}/A_\mathrm{att}$ (measured)")
     axes[0].set_title("(a) area ratio against Eq. 6", fontsize=10)
-    axes[1].set_xlabel("(h′rms Δr / ℓa) · (h′rms d_rep / (π Δr))^(2/3)")
-    axes[1].set_ylabel("κ_att = h′rms E* A_rep / N_att (measured)")
-    axes[1].set_title("(b) κ_att against Eq. 7", fontsize=10)
-    fig.legend(handles=style.legend_handles(), loc="outside right upper", fontsize=7)
+    axes[1].set_xlabel(r"$X = (h'_\mathrm{rms}\,\Delta r/\ell_a)\,u^{2/3}$")
+    axes[1].set_ylabel(
+        r"$\kappa_\mathrm{att} = h'_\mathrm{rms} E^* A_\mathrm{rep}/N_\mathrm{att}$ (measured)"
+    )
+    axes[1].set_title(r"(b) $\kappa_\mathrm{att}$ against Eq. 7", fontsize=10)
+    handles, texts = [], []
+    for ax in axes:
+        h, t = ax.get_legend_handles_labels()
+        handles += h
+        texts += t
+    fig.legend(handles, texts, loc="outside lower center", ncols=2, **LEGEND)
+    caption = _key(fig, style, drawn)
+    title = (
+        r"Fig. 4: measured $A_\mathrm{rep}/A_\mathrm{att}$ and $\kappa_\mathrm{att}$"
+        " against Eqs. 6 and 7"
+    )
+    fig.suptitle(title + (f"\n{caption}" if caption else ""), fontsize=10)
     return fig
 
 

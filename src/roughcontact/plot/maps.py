@@ -28,7 +28,9 @@ def contact_masks(item, target_area=0.02):
 
     ``item`` is a path dataset (with ``pressure`` or ``gap`` on ``field_step, x, y``), its
     NetCDF file, or a 2D pressure array. Of a path's stored field steps the one whose
-    repulsive area is closest to ``target_area`` (per A0) is used.
+    repulsive area is closest to ``target_area`` (per A0) is used. ``label`` is the
+    mathtext ``$\\ell_a/a_0 = ...$`` of the path's attributes (``"non-adhesive"`` without
+    adhesion, ``""`` for an array); ``pixel_size`` is a0 in the path's length unit.
     """
     if isinstance(item, (str, Path)):
         from ..analysis.path_analysis import load_path
@@ -80,18 +82,26 @@ def figure1(maps, *, labels=None, target_area=0.02, region=None):
         Path datasets with contact fields (``fields_at=``), their files, or 2D pressure
         arrays (e.g. one per ℓa on the same surface, as in the paper's Fig. 1 C-E).
     labels : sequence of str, optional
-        Panel titles (default: ``ℓa/a0 = ...`` from the path's attributes).
+        Panel titles (default: ``$\\ell_a/a_0 = ...$`` (mathtext) from the path's
+        attributes).
     target_area : float
-        A_rep/A0 at which the maps are compared (the paper: about 0.02); of each path's
-        stored steps the closest is shown and its A_rep/A0 printed in the title.
+        A_rep/A0 (dimensionless) at which the maps are compared (the paper: about 0.02);
+        of each path's stored steps the closest is shown and its A_rep/A0 printed in the
+        title.
     region : tuple of int, optional
         ``(x0, y0, width)`` in pixels: an expanded view (periodic wrap-around).
+
+    Notes
+    -----
+    Symbols are typeset with matplotlib mathtext; the legend of the site colours sits
+    below the panels, outside them.
 
     Returns
     -------
     matplotlib.figure.Figure
         One image per map; pixel category 0 (white): neither, 1 (black): attractive,
-        2 (orange): repulsive; x horizontal, y vertical, in units of a0.
+        2 (orange): repulsive; x horizontal, y vertical, in units of a0 (axes
+        :math:`x/a_0`, :math:`y/a_0`).
     """
     from matplotlib.colors import BoundaryNorm, ListedColormap
     from matplotlib.figure import Figure
@@ -132,16 +142,17 @@ def figure1(maps, *, labels=None, target_area=0.02, region=None):
             gid=f"map:{n}",
         )
         title = labels[n] if labels is not None else (label or f"map {n + 1}")
-        ax.set_title(f"{title}\nA_rep/A0 = {area:.4f}, A_att/A0 = {att.mean():.4f}", fontsize=9)
-        ax.set_xlabel("x / a0")
-        ax.set_ylabel("y / a0" if n == 0 else "")
+        areas = rf"$A_\mathrm{{rep}}/A_0 = {area:.4f}$, $A_\mathrm{{att}}/A_0 = {att.mean():.4f}$"
+        ax.set_title(f"{title}\n{areas}", fontsize=9)
+        ax.set_xlabel(r"$x/a_0$")
+        ax.set_ylabel(r"$y/a_0$" if n == 0 else "")
     fig.legend(
         handles=[Patch(color=ORANGE, label="repulsive"), Patch(color="black", label="attractive")],
         loc="outside lower center",
         ncols=2,
         fontsize=8,
         # the figure's title goes here: a suptitle collides with the two-line panel titles
-        title=f"Fig. 1: contact maps at A_rep/A0 ≈ {target_area:g}",
+        title=rf"Fig. 1: contact maps at $A_\mathrm{{rep}}/A_0 \approx {target_area:g}$",
         title_fontsize=9,
     )
     return fig

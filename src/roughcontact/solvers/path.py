@@ -7,7 +7,13 @@ import time
 
 import numpy as np
 
-from .._backend import array_device, computes_on_heights_device, dtype_name, to_device
+from .._backend import (
+    array_device,
+    computes_on_heights_device,
+    dtype_name,
+    to_device,
+    to_numpy,
+)
 from .._validate import ParameterError
 from ..analysis.contact_geometry import contact_patches
 from .result import STATE_SCALARS
@@ -53,6 +59,7 @@ def approach_retract(
     dtype=None,
     checkpoint=None,
     checkpoint_seconds=60.0,
+    until_area=None,
 ):
     """Follow a quasi-static path and return it as an ``xarray.Dataset``.
 
@@ -65,9 +72,13 @@ def approach_retract(
     loads : sequence of float
         Load control instead: mean pressures N/A0 (pressure units), in order.
     retract : bool
-        After the approach, go back through the same values in reverse.
+        After the approach, go back through the same values in reverse (with
+        ``until_area``: through the values the approach visited).
     fields_at : sequence of int
         Steps whose pressure, gap and deflection fields are kept (``field_step`` dim).
+        Negative steps count from the end of the path followed; with ``until_area``,
+        whose length is known only when the approach stops, steps past its end are
+        ignored (without it they wrap around, as before).
     jump_factor : float
         A step is flagged as an instability (jump into or out of contact) when the
         largest change of the deflection exceeds ``jump_factor`` times the change of
@@ -86,6 +97,12 @@ def approach_retract(
         ``checkpoint(dataset)`` with the steps done so far, after a step when at least
         ``checkpoint_seconds`` (s) have passed since the last call (0: after every step):
         for writing partial results that survive a crash or a kill.
+    until_area : float, optional
+        Aim the approach at a repulsive area: A_rep/A0 in (0, 1]. The approach stops
+        after the first step whose ``repulsive_area >= until_area`` (then retracts
+        through the values visited, in reverse, if ``retract``); ``offsets``/``loads`` are
+        then the farthest extent tried. Recorded in the attrs ``until_area`` (NaN when not
+        given) and ``until_area_reached`` (1/0).
 
     Returns
     -------
@@ -94,9 +111,16 @@ def approach_retract(
         perimeter, corrected_repulsive_area (Yastrebov et al. 2017), iterations,
         residual, converged, solve_seconds, repulsive_patches (number of connected
         repulsive patches, periodic), branch ("approach"/"retract"),
-        jump; attrs: the provenance of :func:`provenance` (surface statistics,
-        substrate, interaction parameters) and ``pull_off`` (per A0, >= 0: magnitude of the
-        most negative load on retraction), ``all_converged``. Loads and areas per A0.
+        jump; ``heights`` (dims ``x``, ``y``: the rigid surface's heights h, length,
+        float64 on the host). Attrs: the provenance of :func:`provenance` (surface
+        statistics, the substrate's contact_modulus, pixel_size, grid, thickness (inf:
+        half-space), poisson and base ("" for a half-space): enough to rebuild it;
+        interaction parameters), ``pull_off`` (per A0, >= 0: the magnitude of the most
+        negative load on retraction, or 0 if none is negative; NaN - ``null`` in JSON -
+        when it was not measured: no retraction, or a retraction whose last step still has
+        repulsive contact, e.g. a path starting inside contact), ``separated`` (1 if the
+        retraction's last step has ``repulsive_area == 0``, else 0), ``until_area``,
+        ``until_area_reached``, ``all_converged``. Loads and areas per A0.
 
     Raises
     ------
@@ -113,20 +137,30 @@ def approach_retract(
         raise ParameterError(f"{control}s must contain at least one value (the path is empty)")
     if not np.all(np.isfinite(values)):
         raise ParameterError(f"{control}s must be finite")
-    branch = ["approach"] * values.size
-    if retract and values.size > 1:
-        values = np.concatenate((values, values[-2::-1]))
-        branch += ["retract"] * (values.size - len(branch))
-    fields_at = {int(i) % values.size for i in fields_at}
+    if until_area is not None:
+        until_area = _area_target(until_area)
+    plan = _Plan(values, retract, fields_at, until_area is None)
 
     jump_length = _jump_length(interaction)
     attrs = provenance(heights, substrate, interaction)
+    attrs["until_area"] = math.nan if until_area is None else until_area
+    host_heights = np.array(to_numpy(heights), dtype=np.float64)
     heights = to_device(heights, device, dtype or "float64")
     dtype = dtype_name(heights)
     attrs |= {"dtype": dtype, "device": str(array_device(heights))}
-    rows, fields, previous, t0 = [], {}, None, time.perf_counter()
+    rows, previous, t0 = [], None, time.perf_counter()
     saved = t0
-    for step, value in enumerate(values):
+
+    def dataset():
+        reached = until_area is not None and any(
+            r["repulsive_area"] >= until_area for r in rows[: plan.approach_steps or None]
+        )
+        extra = {"until_area_reached": int(reached)}
+        return _dataset(rows, plan.branch, plan.fields, control, t0, attrs | extra, host_heights)
+
+    step = 0
+    while step < plan.size:
+        value = plan.values[step]
         kwargs = {control: float(value)}
         try:
             res = solve(
@@ -135,14 +169,10 @@ def approach_retract(
             )  # fmt: skip
         except KeyboardInterrupt:
             raise PathInterrupted(
-                f"interrupted in step {step} ({control} = {value:g})",
-                _dataset(rows, branch, fields, control, t0, attrs),
+                f"interrupted in step {step} ({control} = {value:g})", dataset()
             ) from None
         if "non-finite" in res.message or not math.isfinite(res.load):
-            raise PathError(
-                f"step {step} ({control} = {value:g}): {res.message}",
-                _dataset(rows, branch, fields, control, t0, attrs),
-            )
+            raise PathError(f"step {step} ({control} = {value:g}): {res.message}", dataset())
         row = {k: getattr(res, k) for k in STATE_SCALARS}
         row["repulsive_patches"] = int(contact_patches(res.pressure > 0)[1].size)
         if previous is None:
@@ -152,15 +182,84 @@ def approach_retract(
             dd = abs(res.offset - previous.offset)
             row["jump"] = bool(dw > jump_factor * dd + jump_length)
         rows.append(row)
-        if step in fields_at:
-            fields[step] = (res.pressure, res.gap, res.deflection)
+        plan.keep(step, (res.pressure, res.gap, res.deflection))
+        if until_area is not None and plan.approach_steps is None:
+            if res.repulsive_area >= until_area or step == values.size - 1:
+                plan.stop_approach(step)
         previous = res
         if progress is not None:
-            progress(step + 1, values.size, res)
+            progress(step + 1, plan.size, res)
         if checkpoint is not None and time.perf_counter() - saved >= checkpoint_seconds:
-            checkpoint(_dataset(rows, branch, fields, control, t0, attrs))
+            checkpoint(dataset())
             saved = time.perf_counter()
-    return _dataset(rows, branch, fields, control, t0, attrs)
+        step += 1
+    return dataset()
+
+
+def _area_target(until_area) -> float:
+    try:
+        a = float(until_area)
+    except (TypeError, ValueError):
+        raise ParameterError(f"until_area must be a number in (0, 1], got {until_area!r}") from None
+    if not (0 < a <= 1):
+        raise ParameterError(f"until_area must be in (0, 1] (A_rep/A0), got {until_area!r}")
+    return a
+
+
+class _Plan:
+    """The values of a path, its branches and which steps keep their fields.
+
+    Without an area target the whole path is known in advance. With one, the approach
+    may stop early (:meth:`stop_approach`); the retraction then mirrors the values
+    visited. Negative ``fields_at`` steps are resolved once the length is known: the
+    approach steps they can name are among the last ``max |step|`` ones, held meanwhile.
+    """
+
+    def __init__(self, approach, retract, fields_at, known):
+        self.approach = approach
+        self.retract = bool(retract)
+        self.requested = [int(i) for i in fields_at]
+        self.fields = {}
+        self._held = {}
+        self._depth = max([-i for i in self.requested if i < 0], default=0)
+        self.approach_steps = None
+        self._set_values(approach)
+        if known:
+            self.stop_approach(approach.size - 1)
+            # the historical behaviour: every index wraps around the whole path
+            self._wanted = {i % self.size for i in self.requested}
+        else:
+            self._wanted = {i for i in self.requested if i >= 0}
+
+    def _set_values(self, approach):
+        n = approach.size
+        self.values = approach
+        self.branch = ["approach"] * n
+        if self.retract and n > 1:
+            self.values = np.concatenate((approach, approach[-2::-1]))
+            self.branch += ["retract"] * (n - 1)
+
+    @property
+    def size(self) -> int:
+        return self.values.size
+
+    def stop_approach(self, step):
+        """The approach ends after ``step``: fix the retraction and the field steps."""
+        self.approach_steps = step + 1
+        self._set_values(self.approach[: step + 1])
+        self._wanted = {i for i in self.requested if 0 <= i < self.size}
+        self._wanted |= {self.size + i for i in self.requested if -self.size <= i < 0}
+        for s, arrays in self._held.items():
+            if s in self._wanted:
+                self.fields[s] = arrays
+        self._held = {}
+
+    def keep(self, step, arrays):
+        if step in self._wanted:
+            self.fields[step] = arrays
+        elif self.approach_steps is None and self._depth:
+            self._held[step] = arrays
+            self._held.pop(step - self._depth, None)
 
 
 def _jump_length(interaction) -> float:
@@ -175,8 +274,11 @@ def provenance(heights, substrate, interaction) -> dict:
     """Everything needed to analyse a path without its inputs: NetCDF-ready attributes.
 
     Surface statistics (spectral h_rms, h'rms, h''rms, d_rep = 4h'rms/h''rms, the
-    shortest wavelength present), the substrate (E*, a0, grid, thickness, ν) and the
-    interaction's parameters, each under its own key (units as in the rest of the API).
+    shortest wavelength present), the substrate (E*, a0, grid, thickness (inf for a
+    half-space), ν, base ("" for a half-space): ``Substrate(grid, contact_modulus=...,
+    pixel_size=..., thickness=None if inf, poisson=..., base=base or "bonded")`` rebuilds
+    it) and the interaction's parameters, each under its own key (units as in the rest
+    of the API).
     """
     from .. import __version__
     from ..surfaces.statistics import short_cutoff_estimate, statistics
@@ -195,6 +297,7 @@ def provenance(heights, substrate, interaction) -> dict:
         "nominal_area": substrate.nominal_area,
         "thickness": math.inf if substrate.thickness is None else substrate.thickness,
         "poisson": substrate.poisson,
+        "base": "" if substrate.thickness is None else substrate.base,
         "interaction_name": getattr(interaction, "name", "hardwall"),
         "interaction": repr(interaction),
         "substrate": repr(substrate),
@@ -216,7 +319,7 @@ _LAW_PARAMETERS = (
 )
 
 
-def _dataset(rows, branch, fields, control, t0, attrs):
+def _dataset(rows, branch, fields, control, t0, attrs, heights):
     import xarray as xr
 
     n = len(rows)
@@ -229,12 +332,16 @@ def _dataset(rows, branch, fields, control, t0, attrs):
         ds = ds.assign_coords(field_step=steps)
         for i, name in enumerate(("pressure", "gap", "deflection")):
             ds[name] = (("field_step", "x", "y"), np.stack([fields[s][i] for s in steps]))
-    retract_loads = [r["load"] for r, b in zip(rows, branch, strict=False) if b == "retract"]
-    pull_off = max(0.0, -min(retract_loads)) if retract_loads else math.nan
+    ds["heights"] = (("x", "y"), heights)
+    retract = [r for r, b in zip(rows, branch, strict=False) if b == "retract"]
+    separated = bool(retract) and retract[-1]["repulsive_area"] == 0
+    # not measured unless the retraction left the repulsive contact behind
+    pull_off = max(0.0, -min(r["load"] for r in retract)) if separated else math.nan
     ds.attrs.update(
         {
             "control": control,
             "pull_off": pull_off,
+            "separated": int(separated),
             "all_converged": int(all(r["converged"] for r in rows)),
             "total_seconds": time.perf_counter() - t0,
             **attrs,

@@ -56,9 +56,11 @@ TIMINGS = ("task_seconds", "path_seconds", "solve_seconds")
 
 
 def _analysis_keys():
+    """Names of the path analysis' scalars, and which of them are text."""
     from ..analysis.path_analysis import PathAnalysis
 
-    return [f.name for f in dataclasses.fields(PathAnalysis) if f.name != "warnings"]
+    fields = [f for f in dataclasses.fields(PathAnalysis) if f.name != "warnings"]
+    return [f.name for f in fields], {f.name for f in fields if f.type in (str, "str")}
 
 
 def _number(value) -> float:
@@ -107,12 +109,15 @@ def collect_study(out_dir, *, include_timings: bool = True):
         parameters (hurst, rms_slope, short_cutoff, long_cutoff, size, pixel_size,
         contact_modulus, thickness (inf: half-space), law, adhesion_length = w/E*, range,
         work_of_adhesion, stiffness, ..., seed). Variables on ``task``: every scalar of
-        the path analysis (kappa, kappa_rep, kappa_att, area_ratio, d_rep, pull_off,
-        sticky (1/0), predicted_*, ...), analysis_warnings, analysis_error, measured
-        surface statistics, steps_not_converged, n_steps, status ("done", "failed",
-        "missing"), failed (True unless done), failure_reason, task_file. On ``task`` ×
-        ``step``: offset, load, repulsive/attractive load and area, perimeter, mean_gap,
-        iterations, residual, repulsive_patches, converged, jump, branch. Areas and loads
+        the path analysis (kappa, inverse_kappa, kappa_rep, kappa_rep_hard_wall,
+        kappa_rep_hard_wall_corrected, band_width, kappa_att, area_ratio, d_rep, pull_off,
+        sticky (1/0), reliable (1/0), predicted_*, ...; the text ones, verdict,
+        predicted_verdict and necessary_condition, as strings), analysis_warnings,
+        analysis_error, measured surface statistics, steps_not_converged, n_steps,
+        status ("done", "failed", "missing"), failed (True unless done), failure_reason,
+        task_file. On ``task`` × ``step``: offset, load, repulsive/attractive load and
+        area, perimeter, mean_gap, iterations, residual, repulsive_patches, converged,
+        jump, branch. Areas and loads
         per A0 (loads in units of E*), lengths in units of a0.
     """
     import xarray as xr
@@ -140,10 +145,14 @@ def collect_study(out_dir, *, include_timings: bool = True):
             coords[key] = ("task", np.array([_number(v) for v in values]))
     data = {}
     analyses = [json.loads(r[2].get("analysis", "{}") or "{}") for r in records]
-    for key in _analysis_keys():
+    keys, text = _analysis_keys()
+    for key in keys:
         if key in coords:  # rms_slope, contact_modulus: the parameters are coordinates
             continue
-        data[key] = ("task", np.array([_number(a.get(key)) for a in analyses]))
+        if key in text:  # verdicts and notes ("" where the task has no analysis)
+            data[key] = ("task", np.array([str(a.get(key) or "") for a in analyses]))
+        else:
+            data[key] = ("task", np.array([_number(a.get(key)) for a in analyses]))
     data["analysis_warnings"] = (
         "task",
         np.array(["; ".join(a.get("warnings", [])) for a in analyses]),

@@ -25,7 +25,12 @@ _LOCKED_HINT = "continue the study with --resume (resume=True) or choose another
 
 @dataclass(frozen=True)
 class StudySummary:
-    """What a run did: task counts, steps that did not converge, wall time (s)."""
+    """What a run did: task counts, steps that did not converge, wall time (s).
+
+    ``analysis_errors`` counts the finished tasks without a path analysis (their
+    ``analysis_error`` says why: the target area not reached, unconverged steps around
+    it, ...); they are not failures, but they have no κ.
+    """
 
     name: str
     out_dir: str
@@ -36,6 +41,7 @@ class StudySummary:
     unconverged_tasks: int
     unconverged_steps: int
     seconds: float
+    analysis_errors: int = 0
 
     @property
     def ok(self) -> bool:
@@ -45,9 +51,15 @@ class StudySummary:
     def __str__(self) -> str:
         lines = [
             f"study {self.name!r}: {self.tasks} tasks, {self.skipped} already finished, "
-            f"{self.completed} computed, {self.failed} failed in {self.seconds:.1f} s",
+            f"{self.completed} computed, {self.failed} failed, {self.analysis_errors} "
+            f"without analysis in {self.seconds:.1f} s",
             f"results in {self.out_dir}",
         ]
+        if self.analysis_errors:
+            lines.append(
+                f"{self.analysis_errors} finished tasks have no path analysis (no kappa): "
+                "see their 'analysis_error' (collect: variable analysis_error)"
+            )
         if self.unconverged_steps:
             lines.append(
                 f"{self.unconverged_steps} path steps in {self.unconverged_tasks} tasks did "
@@ -68,6 +80,7 @@ def _drive(spec, out, todo, client, done, progress):
     for task in todo:  # partial, corrupt or stale files: never taken as finished
         store.task_path(out, task.id).unlink(missing_ok=True)
     unconverged = [int(a.get("steps_not_converged", 0)) for a in done.values()]
+    analysis_errors = sum(1 for a in done.values() if a.get("analysis_error"))
     failed = 0
     with tqdm(
         total=len(spec.tasks),
@@ -85,6 +98,7 @@ def _drive(spec, out, todo, client, done, progress):
                 )
                 store.write_task(out, task, ds)
                 unconverged.append(int(ds.attrs["steps_not_converged"]))
+                analysis_errors += bool(ds.attrs.get("analysis_error"))
             else:
                 failed += 1
                 extra = {
@@ -99,7 +113,7 @@ def _drive(spec, out, todo, client, done, progress):
                     **extra,
                 )
             bar.update(1)
-    return unconverged, failed
+    return unconverged, failed, analysis_errors
 
 
 def run_study(
@@ -183,7 +197,7 @@ def _run_locked(spec, out, resume, scheduler, workers, progress, t0):
     if todo and scheduler != "synchronous":
         client, local = cluster.connect(scheduler, workers)  # an unreachable scheduler fails here
     try:
-        unconverged, failed = _drive(spec, out, todo, client, done, progress)
+        unconverged, failed, analysis_errors = _drive(spec, out, todo, client, done, progress)
     finally:
         if local is not None:
             client.close()
@@ -200,4 +214,5 @@ def _run_locked(spec, out, resume, scheduler, workers, progress, t0):
         unconverged_tasks=sum(1 for u in unconverged if u),
         unconverged_steps=sum(unconverged),
         seconds=time.perf_counter() - t0,
+        analysis_errors=analysis_errors,
     )

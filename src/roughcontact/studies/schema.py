@@ -119,6 +119,10 @@ SCHEMA = {
             "approach",
             False,
         ),
+        # an explicit opt-in: analyse across unconverged steps, marked unreliable
+        "allow_unconverged": _k(bool, default=False, sweep=False),
+        # κ_rep of a hard wall on the same surface beside the paper's (a few cheap solves)
+        "hard_wall_reference": _k(bool, default=True, sweep=False),
     },
     "output": {
         "fields_at": _k(int, "a list of step indices", None, (), False, True),

@@ -214,6 +214,9 @@ def _settings(sections) -> dict:
     areas = list(out["output"].pop("fields_at_area"))
     if areas:
         out["output"]["fields_at_area"] = areas
+    for key, default in (("allow_unconverged", False), ("hard_wall_reference", True)):
+        if out["analysis"][key] is default:  # the default: keys as before (see above)
+            del out["analysis"][key]
     solver = out["solver"]
     if solver["dtype"] == "float32" and solver["tol"] < DEFAULT_TOL["float32"]:
         _fail(

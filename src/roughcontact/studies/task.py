@@ -29,10 +29,11 @@ __all__ = ["AreaFields", "compute_task", "path_values", "run_task", "with_fields
 def path_values(path: dict, heights, law, params: dict) -> np.ndarray:
     """The offsets (length) or loads (mean pressure) of a task's approach.
 
-    Offsets are relative to the first contact of the summit, ``max(h) + d0`` (``d0`` the
-    law's equilibrium distance: a0 for the Lennard-Jones walls, 0 for the hard-core
-    laws), in units of length or of the surface's rms height; or (``unit =
-    "bearing_area"``) fractions v in [0, 1]: ``d = d0 + quantile(h, 1 - v)``, where the
+    Offsets (:func:`roughcontact.solvers.offsets.relative_offsets`, shared with
+    ``roughcontact path --offset-unit``) are relative to the first contact of the summit,
+    ``max(h) + d0`` (``d0`` the law's equilibrium distance: a0 for the Lennard-Jones
+    walls, 0 for the hard-core laws), in units of length or of the surface's rms height;
+    or (``unit = "bearing_area"``) fractions v in [0, 1]: ``d = d0 + quantile(h, 1 - v)``, where the
     undeformed rigid surface would overlap a fraction v of the substrate (the repulsive
     area grows roughly in proportion, whatever the height distribution's tail).
     ``lead_in`` offsets (length above the first contact) come before them. Loads are
@@ -49,16 +50,14 @@ def path_values(path: dict, heights, law, params: dict) -> np.ndarray:
         start, stop, step = path["start"], path["stop"], abs(path["step"])
         count = int(math.floor(abs(stop - start) / step + 1e-9)) + 1
         values = start + np.sign(stop - start or 1) * step * np.arange(count)
-    stats = statistics(heights, pixel_size=params["pixel_size"])
     if path["control"] == "offset":
-        d0 = float(getattr(law, "equilibrium_distance", 0.0))
-        first = float(heights.max()) + d0
-        lead_in = first + np.asarray(path["lead_in"], dtype=float)
-        if path["unit"] == "bearing_area":  # the undeformed surfaces overlap on this fraction
-            offsets = d0 + np.quantile(np.asarray(heights), 1.0 - values)
-        else:
-            offsets = first + (stats.rms_height if path["unit"] == "rms_height" else 1.0) * values
+        from ..solvers.offsets import relative_offsets
+
+        a0 = params["pixel_size"]
+        lead_in = relative_offsets(heights, path["lead_in"], "length", law, a0)
+        offsets = relative_offsets(heights, values, path["unit"], law, a0)
         return np.concatenate((lead_in, offsets))
+    stats = statistics(heights, pixel_size=params["pixel_size"])
     scale = stats.rms_slope if path["unit"] == "rms_slope_modulus" else 1.0
     return values * scale * params["contact_modulus"]
 
@@ -175,9 +174,12 @@ def compute_task(task: Task):
     ds = ds.drop_vars([f for f in FIELDS if f in ds.variables and f not in s["output"]["fields"]])
     t2 = time.perf_counter()
     try:
-        analysis, error = analyze_path(ds, **s["analysis"]).to_dict(), ""
-    except ParameterError as err:
+        analysis = analyze_path(ds, heights=heights, substrate=substrate, **s["analysis"])
+        analysis, error = analysis.to_dict(), ""
+    except ParameterError as err:  # the target area not reached, unconverged steps there
         analysis, error = {}, str(err)
+    # the surface is regenerated from the task's parameters and seed; not stored
+    ds = ds.drop_vars("heights", errors="ignore")
     t3 = time.perf_counter()
     converged = np.asarray(ds["converged"].values, dtype=bool)
     ds.attrs.update(
