@@ -211,3 +211,42 @@ def test_own_cluster_keeps_glibc_malloc_defaults(monkeypatch):
     finally:
         client.close()
         own.close()
+
+
+def test_unconverged_steps_give_an_analysis_error_per_task_counted_in_the_summary(
+    tmp_path, make_study
+):
+    # max_iter = 2: the adhesive steps around 1 % do not converge; the analysis refuses
+    # to interpolate across them, each task records why, the summary counts them
+    spec = load_study(make_study(extra="max_iter = 2"))
+    out = tmp_path / "out"
+    summary = run_study(spec, out, scheduler="synchronous", progress=False)
+    assert summary.failed == 0 and summary.unconverged_steps > 0
+    ds = collect_study(out)
+    errors = [str(e) for e in ds["analysis_error"].values]
+    assert summary.analysis_errors == sum(1 for e in errors if e) > 0
+    assert f"{summary.analysis_errors} without analysis" in str(summary)
+    for i, e in enumerate(errors):
+        if e:  # unconverged around the target, or short of it because of them
+            assert "did not converge" in e and ("residual" in e or "not reached" in e)
+            assert np.isnan(ds["kappa"].values[i]) and ds["verdict"].values[i] == ""
+    again = run_study(spec, out, resume=True, scheduler="synchronous", progress=False)
+    assert again.analysis_errors == summary.analysis_errors  # counted from the files too
+    # the explicit opt-in analyses them, marked unreliable; the key changes the task keys
+    opt_in = load_study(make_study(extra="max_iter = 2\n[analysis]\nallow_unconverged = true",
+                                   name="opt_in.toml"))  # fmt: skip
+    assert opt_in.tasks[0].key != spec.tasks[0].key
+    summary = run_study(opt_in, tmp_path / "in", scheduler="synchronous", progress=False)
+    ds = collect_study(tmp_path / "in")
+    assert summary.analysis_errors < len(errors)
+    analysed = np.isfinite(ds["kappa"].values) | np.isinf(ds["kappa"].values)
+    assert (ds["reliable"].values[analysed] == 0).any()
+
+
+def test_default_analysis_keys_keep_the_task_keys(make_study):
+    plain = load_study(make_study())
+    spelled = load_study(make_study(
+        extra="[analysis]\nallow_unconverged = false\nhard_wall_reference = true",
+        name="spelled.toml",
+    ))  # fmt: skip
+    assert [t.key for t in plain.tasks] == [t.key for t in spelled.tasks]

@@ -208,9 +208,10 @@ def _not_reached(col, target, branch, control, steps) -> str:
         slope = (area[i] - area[i - 1]) / (x[i] - x[i - 1]) if x[i] != x[i - 1] else 0.0
         if slope != 0 and math.isfinite(slope):
             needed = x[i] + (target - area[i]) / slope
+            article = "a" if control == "load" else "an"
             text += (
-                f"; extrapolating its last two steps, A_rep/A0 = {target:g} needs a {control} "
-                f"of about {needed:.6g}: extend the path (e.g. 'roughcontact path ... "
+                f"; extrapolating its last two steps, A_rep/A0 = {target:g} needs {article} "
+                f"{control} of about {needed:.6g}: extend the path (e.g. 'roughcontact path ... "
                 f"--until-area {target:g}')"
             )
     return text
@@ -304,7 +305,11 @@ def analyze_path(
     area = col["repulsive_area"]
     if not area.min() <= target <= area.max():
         control = "load" if ds.attrs.get("control") == "load" else "offset"
-        raise ParameterError(_not_reached(col, target, branch, control, steps))
+        message = _not_reached(col, target, branch, control, steps)
+        if "converged" in ds.variables:
+            bad = int((~np.asarray(ds["converged"].values, dtype=bool)[on]).sum())
+            message += f" ({bad} steps of the branch did not converge)" if bad else ""
+        raise ParameterError(message)
     bracket = _bracket(area, target)
     bad, warnings = _convergence(ds, on, bracket, steps, allow_unconverged)
     at = {k: interpolate_at_area(area, v, target) for k, v in col.items()}
