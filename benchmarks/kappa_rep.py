@@ -55,7 +55,7 @@ def main(argv=None) -> int:
     args = ap.parse_args(argv)
     print(f"{args.size}², H = {args.hurst}, h'rms = {args.rms_slope}, seeds {args.seeds}, "
           f"k = {args.stiffness or 0.5} E*/a0")  # fmt: skip
-    head = ("| λs/a0 | κ_rep hard wall | hard wall, corrected area | κ_rep paper's wall "
+    head = ("| λs/a0 | κ_rep hard wall | hard wall, corrected area | κ_rep smoothed LJ wall "
             "| ratio | δ/a0 | πδ/d_rep | A_rep/λs² |")  # fmt: skip
     print(head + "\n|" + "---|" * 8, flush=True)
     out = []

@@ -2,7 +2,7 @@
 
 One surface family (H = 0.8, h'rms = 0.1, λs = 4 a0, λL = L/2: at 256², A_rep/λs² ≈ 41 at
 1 % contact, enough contacts for the paper's statistics) on a half-space, the paper's
-smoothed 9-3 LJ wall at adhesion lengths from clearly non-sticky to clearly sticky, three
+smoothed 9-3 LJ wall at adhesion lengths from clearly non-sticky to clearly sticky, five
 seeds; each task an approach/retraction path analysed at A_rep = 1 % of A0
 (Pastewka & Robbins, PNAS 111, 3298 (2014)), keeping the pressure map of its approach
 state nearest A_rep = 2 % of A0 for the contact maps of Fig. 1. The seeds are combined by
@@ -223,7 +223,7 @@ def _figures(out: Path, ds):
     return figures, _map_rows(maps)
 
 
-def run_demo_study(out_dir, *, size: int = 256, seeds=(1, 2, 3), workers=None, progress=True):
+def run_demo_study(out_dir, *, size: int = 256, seeds=(1, 2, 3, 4, 5), workers=None, progress=True):
     """Run (or resume) the built-in study, collect it, draw Figs. 1-4, write ``report.md``.
 
     The directory is locked for the whole run (:mod:`roughcontact.studies.lock`): a second

@@ -646,7 +646,7 @@ def _write_path(ds, output, surface_file):
     show_default=True,
     help="Grid size of the adhesive study (0: skip the study).",
 )
-@click.option("--seeds", type=int, default=3, show_default=True, help="Study realisations.")
+@click.option("--seeds", type=int, default=5, show_default=True, help="Study realisations.")
 @click.option(
     "-o",
     "--output",

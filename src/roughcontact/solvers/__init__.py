@@ -1,5 +1,6 @@
 """Contact solvers and the result record."""
 
+from .offsets import first_contact_offset, relative_offsets
 from .path import PathError, PathInterrupted, approach_retract
 from .polonsky_keer import polonsky_keer
 from .result import ContactResult
@@ -11,7 +12,9 @@ __all__ = [
     "PathError",
     "PathInterrupted",
     "approach_retract",
+    "first_contact_offset",
     "minimize_energy",
     "polonsky_keer",
+    "relative_offsets",
     "solve",
 ]
