@@ -79,6 +79,11 @@ def analyze(
     if as_json:
         click.echo(json.dumps(summary))
     else:
+        click.echo(
+            "units: areas per A0, loads N/A0 in units of E*, lengths (d_rep, band_width, "
+            "offset) in the path's length unit; kappa = h'rms E* A_rep/N at the target area, "
+            "kappa_fit = the slope of A_rep(N)"
+        )
         for k, v in summary.items():
             if k != "warnings":
                 click.echo(f"{k:>34}: {v}")

@@ -177,6 +177,16 @@ def figure2(dataset, *, select=None, fit_max_area=None):
     return fig
 
 
+def _legend_below(fig, axes):
+    """One legend of every panel's lines and shadings, below the panels (covers no data)."""
+    handles, texts = [], []
+    for ax in axes:
+        h, t = ax.get_legend_handles_labels()
+        handles += h
+        texts += t
+    fig.legend(handles, texts, loc="outside lower center", ncols=2, **LEGEND)
+
+
 def figure3(dataset, *, kappa_rep=None, d_rep="predicted"):
     r"""Fig. 3: the collapse of forces and areas over every task and contact area.
 
@@ -266,12 +276,7 @@ def figure3(dataset, *, kappa_rep=None, d_rep="predicted"):
         ax.set_xlabel(xl)
         ax.set_ylabel(yl)
         ax.set_title(t, fontsize=10)
-    handles, texts = [], []
-    for ax in axes:
-        h, t = ax.get_legend_handles_labels()
-        handles += h
-        texts += t
-    fig.legend(handles, texts, loc="outside lower center", ncols=2, **LEGEND)
+    _legend_below(fig, axes)
     caption = _key(fig, style, drawn)
     title = "Fig. 3: collapse of forces and areas, converged approach states"
     fig.suptitle(title + (f"\n{caption}" if caption else ""), fontsize=10)
@@ -379,12 +384,7 @@ def figure4(dataset, *, kappa_rep=None, d_rep="measured"):
         r"$\kappa_\mathrm{att} = h'_\mathrm{rms} E^* A_\mathrm{rep}/N_\mathrm{att}$ (measured)"
     )
     axes[1].set_title(r"(b) $\kappa_\mathrm{att}$ against Eq. 7", fontsize=10)
-    handles, texts = [], []
-    for ax in axes:
-        h, t = ax.get_legend_handles_labels()
-        handles += h
-        texts += t
-    fig.legend(handles, texts, loc="outside lower center", ncols=2, **LEGEND)
+    _legend_below(fig, axes)
     caption = _key(fig, style, drawn)
     title = (
         r"Fig. 4: measured $A_\mathrm{rep}/A_\mathrm{att}$ and $\kappa_\mathrm{att}$"
