@@ -41,24 +41,34 @@ Codes (peers are test/benchmark-only dependencies, imported inside functions):
   between solves (warm start).
 
 Surface generation, the hard-wall solve that fixes the schedule, model construction
-and imports are never timed. BLAS runs on ``--blas-threads`` (default 1, via threadpoolctl):
+and imports are never timed. BLAS runs on ``--blas-threads`` (default 1):
 roughcontact calls no BLAS, but Adhesion's NuMPI reductions call ``np.dot`` on every
 evaluation, and a 2-thread OpenBLAS dot of 65k doubles took 12 ms instead of 9 us while
-another process kept one of the two cores busy.
+another process kept one of the two cores busy. The limit is enforced, not assumed (see
+``_threads.py``): the thread variables (OPENBLAS_NUM_THREADS, OMP_NUM_THREADS, ...) are
+set before NumPy is imported, threadpoolctl limits every loaded pool when installed, the
+pools are verified, and the script refuses to run if the limit cannot be enforced; the
+header and the JSON (``meta.threads``) record threads per library, CPUs and versions.
 """
 
 from __future__ import annotations
 
+import sys
+
+if __name__ == "__main__":  # before NumPy, SciPy or a peer loads its BLAS: see _threads.py
+    import _threads
+
+    _threads.preset_from_argv(sys.argv[1:], "--blas-threads", default=1)
+
 import argparse
 import contextlib
-import importlib
 import json
 import math
 import os
-import sys
 import time
 from importlib import metadata
 
+import _threads
 import numpy as np
 from hardwall import capture_stderr_fd, fft_pair_seconds, machine_meta, n_cores, surface
 
@@ -638,7 +648,8 @@ def main(argv=None) -> int:
         "--blas-threads",
         type=int,
         default=1,
-        help="BLAS threads (threadpoolctl); 1 keeps the peers' dot products sane on a busy machine",
+        help="BLAS/OpenMP threads per library, set before NumPy loads and verified; 1 keeps "
+        "the peers' dot products sane on a busy machine",
     )
     ap.add_argument(
         "--float32",
@@ -665,31 +676,21 @@ def main(argv=None) -> int:
     for dist in ("Adhesion", "ContactMechanics", "tamaas"):
         with contextlib.suppress(metadata.PackageNotFoundError):
             meta[dist] = metadata.version(dist)
-    print(
-        f"# adhesive approach, {args.steps} steps, tol {args.tol:g} (max force imbalance / E*), "
-        f"cap {args.max_iter} it/step, roughcontact median of {args.repeats}, peers "
-        f"{args.peer_repeats}; Adhesion up to n={args.adhesion_max_size}, "
-        f"{args.adhesion_time_cap:g} s/step cap; {meta['cores']} cores, FFT workers "
-        f"{args.fft_workers}, BLAS threads {args.blas_threads}",
-        flush=True,
-    )
-    # threadpoolctl limits only the libraries already loaded: load scipy's own OpenBLAS
-    # (L-BFGS-B) and the peers first
-    import scipy.optimize  # noqa: F401
-
-    for mod in ("Adhesion.System", "ContactMechanics", "tamaas"):
-        with contextlib.suppress(ImportError):
-            importlib.import_module(mod)
-    t0 = time.perf_counter()
-    with contextlib.ExitStack() as stack:
-        with contextlib.suppress(ImportError):
-            from threadpoolctl import threadpool_info, threadpool_limits
-
-            stack.enter_context(threadpool_limits(limits=args.blas_threads, user_api="blas"))
-            meta["threadpools"] = [
-                dict(api=i["internal_api"], threads=i["num_threads"], path=i["filepath"])
-                for i in threadpool_info()
-            ]
+    # the limit, and its check, cover scipy's own OpenBLAS (L-BFGS-B) and the peers' libraries:
+    # load them first (threadpoolctl sees only loaded libraries)
+    preload = ("scipy.optimize", "Adhesion.System", "ContactMechanics", "tamaas")
+    with _threads.enforced(args.blas_threads, preload=preload) as threads:
+        meta["threads"] = threads
+        meta["threadpools"] = threads["threadpools"]
+        print(
+            f"# adhesive approach, {args.steps} steps, tol {args.tol:g} (max force imbalance / "
+            f"E*), cap {args.max_iter} it/step, roughcontact median of {args.repeats}, peers "
+            f"{args.peer_repeats}; Adhesion up to n={args.adhesion_max_size}, "
+            f"{args.adhesion_time_cap:g} s/step cap; {meta['cores']} cores, FFT workers "
+            f"{args.fft_workers}, BLAS threads {args.blas_threads}\n" + _threads.describe(threads),
+            flush=True,
+        )
+        t0 = time.perf_counter()
         out = run(args, log=lambda s: print(s, flush=True))
     print("# summary (t/step: median over the steps; Adh/rc, tm/rc: the peer's t/step / ours)")
     print(SUMMARY_HEADER)

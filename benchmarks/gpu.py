@@ -28,15 +28,25 @@ CPU (NumPy, scipy.fft on all cores) for the GPU/CPU ratio; ``--cpu-path`` also t
 
 Surface generation and the hard-wall solve that fixes the offsets are never timed; each
 size starts with an untimed warm-up solve on the device (CUDA context, cuFFT plans,
-kernel compilation).
+kernel compilation). BLAS and OpenMP pools run on their libraries' defaults unless
+``--blas-threads N`` is given, which is then enforced and verified (``_threads.py``); the
+header and the JSON (``meta.threads``) record the threads per library, CPUs and versions.
 """
 
 from __future__ import annotations
+
+import sys
+
+if __name__ == "__main__":  # before NumPy or SciPy loads its BLAS: see _threads.py
+    import _threads
+
+    _threads.preset_from_argv(sys.argv[1:], "--blas-threads", default=None)
 
 import argparse
 import json
 import time
 
+import _threads
 import numpy as np
 from hardwall import machine_meta, surface
 
@@ -186,15 +196,32 @@ def main(argv=None) -> int:
     ap.add_argument("--adhesion-length", type=float, default=0.005, help="ℓa / a0")
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument(
+        "--blas-threads",
+        type=int,
+        default=None,
+        help="BLAS/OpenMP threads per library, set before NumPy loads and verified (default: "
+        "the libraries' own; recorded either way)",
+    )
     ap.add_argument("--json", metavar="OUT")
     args = ap.parse_args(argv)
+    with _threads.enforced(args.blas_threads, preload=("scipy.fft",)) as threads:
+        meta, rows, paths = _main(args, threads)
+    if args.json:  # after the block: with the pools as they were at the end
+        with open(args.json, "w") as f:
+            json.dump({"meta": meta, "solves": rows, "paths": paths}, f, indent=1)
+    return 0
 
+
+def _main(args, threads: dict):
     meta = machine_meta()
     if args.device != "cpu":
         cupy = _xp(args.device)
         props = cupy.cuda.runtime.getDeviceProperties(0)
         meta |= {"gpu": props["name"].decode(), "cupy": cupy.__version__}
-    print(json.dumps(meta))
+    meta["threads"] = threads
+    print(json.dumps({k: v for k, v in meta.items() if k != "threads"}))
+    print(_threads.describe(threads), flush=True)
     rows, paths = [], []
     for n in args.sizes:
         rows.append(bench_size(n, args, args.device))
@@ -221,10 +248,7 @@ def main(argv=None) -> int:
                 f"{p['max_repulsive_area']:.4f}  (target < 120 s on one H100)",
                 flush=True,
             )
-    if args.json:
-        with open(args.json, "w") as f:
-            json.dump({"meta": meta, "solves": rows, "paths": paths}, f, indent=1)
-    return 0
+    return meta, rows, paths
 
 
 if __name__ == "__main__":

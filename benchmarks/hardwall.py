@@ -23,20 +23,30 @@ What is timed (wall clock, ``time.perf_counter``; median over ``--repeats`` cold
   ``PeriodicFFTElasticHalfSpace`` (FFT engine, Green's function) and the ``Topography``
   are built once beforehand and reused; each solve starts cold.
 
-Surface generation and imports are never timed.
+Surface generation and imports are never timed. BLAS and OpenMP pools run on their
+libraries' defaults (the figures in README.md) unless ``--blas-threads N`` is given, which
+is then enforced and verified (``_threads.py``); the header and the JSON
+(``meta.threads``) record the threads per library, CPUs and versions either way.
 """
 
 from __future__ import annotations
+
+import sys
+
+if __name__ == "__main__":  # before NumPy, SciPy or a peer loads its BLAS: see _threads.py
+    import _threads
+
+    _threads.preset_from_argv(sys.argv[1:], "--blas-threads", default=None)
 
 import argparse
 import contextlib
 import json
 import os
 import platform
-import sys
 import tempfile
 import time
 
+import _threads
 import numpy as np
 
 PEERS = ("tamaas", "contactmechanics")
@@ -349,6 +359,13 @@ def main(argv=None) -> int:
         help="threads for the FFT-pair reference (the faster of this and one is used)",
     )
     ap.add_argument(
+        "--blas-threads",
+        type=int,
+        default=None,
+        help="BLAS/OpenMP threads per library, set before NumPy loads and verified (default: "
+        "the libraries' own, as measured in README.md; recorded either way)",
+    )
+    ap.add_argument(
         "--plain",
         action="store_true",
         help="also time roughcontact on the fine grid alone (rc-1grid) and plain (rc-plain)",
@@ -368,22 +385,26 @@ def main(argv=None) -> int:
     for name, mod in (("tamaas", "tamaas"), ("contactmechanics", "ContactMechanics")):
         with contextlib.suppress(ImportError):
             meta[name] = __import__(mod).__version__
-    print(
-        f"# hard wall, mean pressure {args.load:g} E*, tol {args.tol:g}, "
-        f"median of {args.repeats}, {meta['cores']} cores, FFT workers {args.fft_workers}"
-    )
-    print(HEADER, flush=True)
-    rows = run(
-        args.sizes,
-        args.repeats,
-        args.tol,
-        args.peers,
-        args.load,
-        args.seed,
-        args.fft_workers,
-        log=lambda s: print(s, flush=True),
-        plain=args.plain,
-    )
+    preload = ("scipy.fft", "tamaas", "ContactMechanics")
+    with _threads.enforced(args.blas_threads, preload=preload) as threads:
+        meta["threads"] = threads
+        print(
+            f"# hard wall, mean pressure {args.load:g} E*, tol {args.tol:g}, "
+            f"median of {args.repeats}, {meta['cores']} cores, FFT workers {args.fft_workers}\n"
+            + _threads.describe(threads)
+        )
+        print(HEADER, flush=True)
+        rows = run(
+            args.sizes,
+            args.repeats,
+            args.tol,
+            args.peers,
+            args.load,
+            args.seed,
+            args.fft_workers,
+            log=lambda s: print(s, flush=True),
+            plain=args.plain,
+        )
     if args.json:
         with open(args.json, "w") as fh:
             json.dump(dict(meta=meta, rows=rows), fh, indent=2)

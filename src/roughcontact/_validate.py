@@ -1,8 +1,16 @@
-"""Input checks that name the parameter and the accepted range."""
+"""Input checks that name the parameter and the accepted range.
+
+The accepted range of a parameter is written once, here (a :class:`Range` constant such
+as :data:`TOL`), and checked from there by the Python API, the command line (option
+callbacks, :func:`click_check`) and the study schema (:mod:`roughcontact.studies.schema`
+takes its ``accepted`` text and test from the same constant).
+"""
 
 from __future__ import annotations
 
 import math
+import os
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -11,14 +19,251 @@ class ParameterError(ValueError):
     """A parameter is outside its accepted range; the message names both."""
 
 
+def _num(v) -> str:
+    return f"{v:g}".replace("e+", "e")
+
+
+def _is_number(value, integer: bool) -> bool:
+    if isinstance(value, (bool, np.bool_)):
+        return False
+    if integer:
+        return isinstance(value, (int, np.integer))
+    return isinstance(value, (int, float, np.integer, np.floating))
+
+
+@dataclass(frozen=True)
+class Range:
+    """The accepted values of one parameter: bounds (open or closed), integer or real.
+
+    ``accepted`` is the range in words (as the messages and the study schema print it),
+    ``contains`` the test and ``check`` the validation (a :class:`ParameterError` naming
+    the parameter, the value and the range). Booleans and strings are never numbers
+    here; real ranges reject NaN and infinities.
+    """
+
+    lo: float | None = None
+    hi: float | None = None
+    lo_open: bool = False
+    hi_open: bool = False
+    integer: bool = False
+
+    @property
+    def accepted(self) -> str:
+        kind = "an integer " if self.integer else ""
+        if self.lo is not None and self.hi is not None:
+            left, right = "(" if self.lo_open else "[", ")" if self.hi_open else "]"
+            return f"{kind}in {left}{_num(self.lo)}, {_num(self.hi)}{right}"
+        finite = "" if self.integer else " and finite"
+        if self.lo is not None:
+            return f"{kind}{'>' if self.lo_open else '>='} {_num(self.lo)}{finite}"
+        if self.hi is not None:
+            return f"{kind}{'<' if self.hi_open else '<='} {_num(self.hi)}{finite}"
+        return "an integer" if self.integer else "finite"
+
+    def contains(self, value) -> bool:
+        """Is ``value`` a number of the right kind inside the range?"""
+        if not _is_number(value, self.integer):
+            return False
+        v = int(value) if self.integer else float(value)
+        if not self.integer and not math.isfinite(v):
+            return False
+        if self.lo is not None and not (v > self.lo if self.lo_open else v >= self.lo):
+            return False
+        return self.hi is None or (v < self.hi if self.hi_open else v <= self.hi)
+
+    def check(self, name: str, value):
+        """``value`` (an int or a float) if :meth:`contains` it, else a ParameterError."""
+        if not self.contains(value):
+            kind = "an integer" if self.integer else "a number"
+            what = "" if _is_number(value, self.integer) else f" ({kind})"
+            raise ParameterError(f"{name} must be {self.accepted}{what}, got {value!r}")
+        return int(value) if self.integer else float(value)
+
+
+#: Solver tolerance (the solvers' residual measure); float32 has a floor of its own.
+TOL = Range(0, 1, lo_open=True, hi_open=True)
+#: Iteration cap of one solve.
+MAX_ITER = Range(1, integer=True)
+#: A_rep/A0 at which a path is analysed (and Fig. 1's maps are drawn).
+TARGET_AREA = Range(0, 1, lo_open=True, hi_open=True)
+#: Largest A_rep/A0 in the fit of A_rep against N.
+FIT_MAX_AREA = Range(0, 1, lo_open=True)
+#: Hurst exponent of a self-affine surface.
+HURST = Range(0, 1, lo_open=True)
+#: Random seed of a surface (NumPy's SeedSequence takes integers >= 0).
+SEED = Range(0, integer=True)
+#: Grid spacing a0 (length): a0**11 (the 9-3 wall's curvature), a0**3 (energies) and n² a0²
+#: (areas) stay normal floats; any unit system fits (a0 = 1e-10 m in SI).
+PIXEL_SIZE = Range(1e-25, 1e25)
+#: Contact modulus E* (pressure): loads, stiffnesses and energies (E* a0**3) stay normal.
+CONTACT_MODULUS = Range(1e-100, 1e100)
+#: Thickness of a layer in units of the pixel size (thinner layers are too stiff for the
+#: solvers' float64 residuals; thicker ones overflow the layer stiffness).
+THICKNESS_RATIO = Range(1e-6, 1e100)
+#: Poisson ratio of a layer.
+POISSON = Range(0, 0.5)
+#: Grid size along one axis (sites).
+GRID_SIZE = Range(2, integer=True)
+#: Resolution of raster figures (dots per inch).
+DPI = Range(10, 2400, integer=True)
+#: The most steps of the approach of a path (the retraction doubles it).
+MAX_PATH_STEPS = 100_000
+
+
+def click_check(rng: Range):
+    """A click option callback that checks the option's value against ``rng``.
+
+    The error names the option as typed (``--tol``); None (option not given) passes.
+    Multiple options are checked value by value.
+    """
+
+    def callback(ctx, param, value):
+        if value is None:
+            return value
+        name = max(param.opts, key=len) if param.opts else param.name
+        if isinstance(value, tuple):
+            return tuple(rng.check(name, v) for v in value)
+        return rng.check(name, value)
+
+    return callback
+
+
+def layer_thickness(name: str, thickness, pixel_size: float) -> float:
+    """A layer thickness (length) in :data:`THICKNESS_RATIO` times the pixel size."""
+    t = Range(0, lo_open=True).check(name, thickness)
+    if not THICKNESS_RATIO.contains(t / pixel_size):
+        lo, hi = (b * pixel_size for b in (THICKNESS_RATIO.lo, THICKNESS_RATIO.hi))
+        raise ParameterError(
+            f"{name} must be in [{_num(THICKNESS_RATIO.lo)}, {_num(THICKNESS_RATIO.hi)}] x "
+            f"pixel_size = [{_num(lo)}, {_num(hi)}] (length), got {thickness!r}"
+        )
+    return t
+
+
+def surface_seed(name: str, value):
+    """Check a surface seed: None, a Generator/SeedSequence, or integer(s) >= 0."""
+    if value is None or isinstance(value, (np.random.Generator, np.random.SeedSequence)):
+        return value
+    if isinstance(value, (list, tuple)):
+        for v in value:
+            SEED.check(name, v)
+        return value
+    if isinstance(value, np.random.BitGenerator):
+        return value
+    return SEED.check(name, value)
+
+
+def tolerance(name: str, value, precision: str = "float64", floor: float = 1e-6) -> float:
+    """Check a solver tolerance: :data:`TOL`, and ``>= floor`` in float32 (its rounding)."""
+    tol = TOL.check(name, value)
+    if precision == "float32" and tol < floor:
+        raise ParameterError(
+            f"{name} must be >= {floor:g} with dtype='float32' (single precision cannot "
+            f"resolve smaller residuals), got {value!r}; use dtype='float64'"
+        )
+    return tol
+
+
+def step_list(name: str, steps) -> list[int]:
+    """``steps`` (an int or a sequence of ints; no bools, no floats) as a list of ints."""
+    if _is_number(steps, True):
+        steps = [steps]
+    try:
+        steps = list(steps)
+    except TypeError:
+        raise ParameterError(
+            f"{name} must be a list of integer step indices, got {steps!r}"
+        ) from None
+    for step in steps:
+        if not _is_number(step, True):
+            raise ParameterError(f"{name} must be integer step indices, got {step!r}")
+    return [int(step) for step in steps]
+
+
+def step_indices(name: str, steps, size: int) -> list[int]:
+    """Step indices of a path of ``size`` steps, negative ones counted from the end.
+
+    Returns them as indices in ``[0, size)``; an index outside ``[-size, size)`` is a
+    ParameterError naming the accepted range.
+    """
+    out = []
+    for i in step_list(name, steps):
+        if not -size <= i < size:
+            raise ParameterError(
+                f"{name} step {i} is out of range for a path of {size} steps: accepted "
+                f"{-size} to {size - 1} (negative: counted from the end)"
+            )
+        out.append(i % size)
+    return out
+
+
+def available_memory() -> int | None:
+    """Bytes of memory available to a new allocation here (None if unknown)."""
+    try:
+        with open("/proc/meminfo") as f:
+            for line in f:
+                if line.startswith("MemAvailable:"):
+                    return int(line.split()[1]) * 1024
+    except (OSError, ValueError, IndexError):
+        pass
+    try:
+        return int(os.sysconf("SC_AVPHYS_PAGES")) * int(os.sysconf("SC_PAGE_SIZE"))
+    except (AttributeError, OSError, ValueError):
+        pass
+    try:  # pragma: no cover - platforms without sysconf
+        import psutil
+
+        return int(psutil.virtual_memory().available)
+    except Exception:  # noqa: BLE001
+        return None
+
+
+def _gib(nbytes: float) -> str:
+    if nbytes >= 2**40:
+        return f"{nbytes / 2**40:.3g} TiB"
+    return f"{nbytes / 2**30:.3g} GiB"
+
+
+def fits_in_memory(name: str, value, needed: float, what: str, per_item: float = 0.0):
+    """Raise a ParameterError if ``needed`` bytes exceed the memory available here.
+
+    ``per_item`` (bytes per grid site) lets the message give the largest square grid
+    that would fit.
+    """
+    free = available_memory()
+    if free is None or needed <= free:
+        return
+    n = math.isqrt(int(free / per_item)) if per_item else 0
+    largest = f"; accepted here: up to about {n} x {n} sites" if per_item else ""
+    raise ParameterError(
+        f"{name} = {value!r} is too large: {what} needs about {_gib(needed)} of memory, "
+        f"more than the {_gib(free)} available{largest}"
+    )
+
+
+#: The magnitudes :func:`positive` accepts: their squares and inverse squares are normal
+#: floats, so no quantity derived from them silently becomes 0 or inf (any unit system
+#: fits well inside).
+MAGNITUDE = (1e-150, 1e150)
+
+
 def positive(name: str, value, *, allow_inf: bool = False) -> float:
-    """Return ``float(value)`` if it is finite and > 0, else raise :class:`ParameterError`."""
+    """Return ``float(value)`` if it is > 0 and finite, else raise :class:`ParameterError`.
+
+    Magnitudes outside :data:`MAGNITUDE` are rejected too (``inf`` passes with
+    ``allow_inf``).
+    """
     try:
         v = float(value)
     except (TypeError, ValueError):
         raise ParameterError(f"{name} must be a positive number, got {value!r}") from None
     if not (v > 0) or (math.isinf(v) and not allow_inf) or math.isnan(v):
         raise ParameterError(f"{name} must be > 0 and finite, got {value!r}")
+    lo, hi = MAGNITUDE
+    if not (lo <= v <= hi or math.isinf(v)):
+        raise ParameterError(
+            f"{name} must be > 0 and finite, in [{_num(lo)}, {_num(hi)}], got {value!r}"
+        )
     return v
 
 
@@ -46,12 +291,61 @@ def shape2d(name: str, shape) -> tuple[int, int]:
     return nx, ny
 
 
+_KIND_WORDS = {"b": "boolean", "c": "complex", "O": "object", "U": "text", "S": "text",
+               "V": "structured", "M": "datetime", "m": "timedelta"}  # fmt: skip
+
+
+def _dtype_kind(x) -> str:
+    """NumPy's one-letter kind of an array's dtype, for any array-API backend."""
+    try:
+        return np.dtype(x.dtype).kind
+    except TypeError:
+        from ._backend import array_namespace
+
+        xp = array_namespace(x)
+        for kind, words in (("f", "real floating"), ("i", "integral"), ("c", "complex floating")):
+            if xp.isdtype(x.dtype, words):
+                return kind
+        return "b"
+
+
+def real_array(name: str, heights):
+    """``heights`` as an array if it holds real numbers (no bool/complex/object/text/mask).
+
+    Array-likes (lists) become NumPy arrays; arrays are returned as given. Nothing is
+    converted silently: a complex array would lose its imaginary part, a masked one its
+    mask, a boolean one would read as heights 0 and 1.
+    """
+    if isinstance(heights, np.ma.MaskedArray):
+        raise ParameterError(
+            f"{name} must be a plain array of real numbers, got a masked array (its mask "
+            "would be ignored); fill the masked sites first (e.g. heights.filled(value))"
+        )
+    if not hasattr(heights, "shape") or not hasattr(heights, "dtype"):
+        try:
+            heights = np.asarray(heights)
+        except (TypeError, ValueError) as err:
+            raise ParameterError(
+                f"{name} must be a 2D array of real numbers, got {type(heights).__name__} ({err})"
+            ) from None
+    kind = _dtype_kind(heights)
+    if kind not in "fiu":
+        raise ParameterError(
+            f"{name} must hold real numbers (float or integer), got dtype {heights.dtype} "
+            f"({_KIND_WORDS.get(kind, kind)}); accepted: a 2D array of finite real heights"
+        )
+    return heights
+
+
 def heights2d(name: str, heights):
-    """Check that a height map is a 2D array of finite reals (NumPy input: as float64)."""
+    """Check that a height map is a 2D array of finite reals (NumPy input: as float64).
+
+    Rejected: boolean, complex, object or text arrays, masked arrays, NaN or inf, and
+    heights so large that their rms (a sum of squares) overflows.
+    """
     from ._backend import array_namespace, is_numpy_array
 
-    if not hasattr(heights, "shape"):
-        heights = np.asarray(heights, dtype=float)
+    heights = real_array(name, heights)
     if heights.ndim != 2:
         raise ParameterError(f"{name} must be a 2D array, got {heights.ndim} dimension(s)")
     if heights.shape[0] < 2 or heights.shape[1] < 2:
@@ -61,7 +355,27 @@ def heights2d(name: str, heights):
         heights = np.asarray(heights, dtype=float)
     if not bool(xp.all(xp.isfinite(heights))):
         raise ParameterError(f"{name} must be finite everywhere (found NaN or inf)")
+    _rms_is_finite(name, heights, xp)
     return heights
+
+
+def _rms_is_finite(name, heights, xp) -> None:
+    """Reject heights whose rms overflows (checked exactly only when |h| is that large)."""
+    if not xp.isdtype(heights.dtype, "real floating"):
+        return
+    top = float(xp.max(xp.abs(heights)))
+    limit = math.sqrt(float(xp.finfo(heights.dtype).max)) * 1e-3
+    if top <= limit:
+        return
+    with np.errstate(over="ignore", invalid="ignore"):
+        centred = heights - xp.mean(heights)
+        rms = float(xp.sqrt(xp.mean(centred * centred)))
+    if not math.isfinite(rms):
+        raise ParameterError(
+            f"{name} have an rms that overflows in {heights.dtype} (|h| up to "
+            f"{_num(top)}): accepted heights with a finite rms (|h| below about "
+            f"{_num(float(f'{limit:.0e}'))}); rescale the length unit"
+        )
 
 
 def finite(name: str, value) -> float:
@@ -105,3 +419,23 @@ def json_ready(record) -> dict:
         k: (None if isinstance(v, float) and not math.isfinite(v) else v)
         for k, v in asdict(record).items()
     }
+
+
+def json_safe(obj):
+    """``obj`` with every non-finite float (NaN, inf) replaced by None, recursively.
+
+    For ``json.dumps(..., allow_nan=False)``: JSON has no NaN or Infinity. NumPy scalars
+    become Python numbers; dicts, lists and tuples are walked.
+    """
+    if isinstance(obj, dict):
+        return {k: json_safe(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [json_safe(v) for v in obj]
+    if isinstance(obj, (np.bool_,)):
+        return bool(obj)
+    if isinstance(obj, np.integer):
+        return int(obj)
+    if isinstance(obj, (float, np.floating)):
+        v = float(obj)
+        return v if math.isfinite(v) else None
+    return obj

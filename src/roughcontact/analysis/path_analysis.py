@@ -44,7 +44,16 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .._validate import ParameterError, in_range, json_ready
+from .._validate import (
+    FIT_MAX_AREA,
+    GRID_SIZE,
+    PIXEL_SIZE,
+    POISSON,
+    TARGET_AREA,
+    ParameterError,
+    Range,
+    json_ready,
+)
 from .hard_wall_reference import band_width
 from .hard_wall_reference import hard_wall_reference as _hard_wall_reference
 from .path import interpolate_at_area
@@ -55,6 +64,16 @@ __all__ = ["PathAnalysis", "UnconvergedPathError", "analyze_path", "load_path"]
 _REQUIRED = ("offset", "load", "repulsive_load", "attractive_load", "repulsive_area",
              "attractive_area", "perimeter", "branch")  # fmt: skip
 _REQUIRED_ATTRS = ("rms_slope", "contact_modulus", "pixel_size", "nominal_area")
+_POSITIVE = Range(0, lo_open=True)
+#: The accepted values of the attributes the analysis reads (checked before any work).
+_ATTR_RANGES = {
+    "rms_slope": Range(0),
+    "contact_modulus": _POSITIVE,
+    "pixel_size": PIXEL_SIZE,
+    "nominal_area": _POSITIVE,
+    "poisson": POISSON,
+    "thickness": _POSITIVE,  # or inf: a half-space
+}
 #: πδ/d_rep above which the soft wall's repulsive band is reported as a warning.
 BAND_WARNING = 0.1
 
@@ -165,6 +184,38 @@ def _check(ds):
             "path dataset lacks " + ", ".join(missing) + " (not written by roughcontact "
             "approach_retract / 'roughcontact path', or by an older version)"
         )
+    for key, rng in _ATTR_RANGES.items():
+        if key not in ds.attrs:
+            continue
+        value = ds.attrs[key]
+        if isinstance(value, (np.ndarray, np.generic)) and np.size(value) == 1:
+            value = value.item()  # NumPy scalars from the file as Python numbers
+        half_space = key == "thickness" and _is_inf(value)
+        if not half_space and not rng.contains(value):
+            raise ParameterError(
+                f"path dataset attribute {key} = {value!r} is out of range: accepted "
+                f"{rng.accepted} (the file was edited or is not a roughcontact path)"
+            )
+    if "grid" in ds.attrs:
+        grid = np.atleast_1d(ds.attrs["grid"])
+        if grid.size != 2 or not all(GRID_SIZE.contains(g) for g in grid):
+            raise ParameterError(
+                f"path dataset attribute grid = {ds.attrs['grid']!r} is out of range: "
+                f"accepted two grid sizes, each {GRID_SIZE.accepted}"
+            )
+    for name in _REQUIRED:
+        if name == "branch":
+            continue
+        values = np.asarray(ds[name].values)
+        if values.dtype.kind not in "fiub" or not np.all(np.isfinite(values)):
+            raise ParameterError(
+                f"path dataset variable {name} must hold finite numbers at every step "
+                "(the file was edited or is not a roughcontact path)"
+            )
+
+
+def _is_inf(value) -> bool:
+    return isinstance(value, (float, np.floating)) and value == math.inf
 
 
 def _fit_kappa(load, area, max_area, rms_slope, modulus):
@@ -293,8 +344,8 @@ def analyze_path(
     if not hasattr(ds, "variables"):
         ds = load_path(ds)
     _check(ds)
-    target = in_range("target_area", target_area, 1e-12, 1.0)
-    fit_max_area = in_range("fit_max_area", fit_max_area, 1e-12, 1.0)
+    target = TARGET_AREA.check("target_area", target_area)
+    fit_max_area = FIT_MAX_AREA.check("fit_max_area", fit_max_area)
     if branch not in ("approach", "retract"):
         raise ParameterError(f"branch must be 'approach' or 'retract', got {branch!r}")
     on = np.asarray(ds["branch"].values == branch)

@@ -7,6 +7,8 @@ import sys
 
 import click
 
+from .._validate import FIT_MAX_AREA, TARGET_AREA, click_check, json_safe
+
 
 @click.command("analyze")
 @click.argument("path_file", metavar="PATH.nc", type=click.Path(dir_okay=False))
@@ -15,7 +17,9 @@ import click
     type=float,
     default=0.01,
     show_default=True,
-    help="A_rep/A0 at which κ, κ_rep, κ_att are measured (the paper: 1 %).",
+    callback=click_check(TARGET_AREA),
+    help=f"A_rep/A0 at which κ, κ_rep, κ_att are measured, {TARGET_AREA.accepted} (the "
+    "paper: 1 %).",
 )
 @click.option(
     "--branch",
@@ -29,7 +33,8 @@ import click
     type=float,
     default=0.05,
     show_default=True,
-    help="Largest A_rep/A0 in the linear fit of A_rep against N.",
+    callback=click_check(FIT_MAX_AREA),
+    help=f"Largest A_rep/A0 in the linear fit of A_rep against N, {FIT_MAX_AREA.accepted}.",
 )
 @click.option(
     "--allow-unconverged",
@@ -77,7 +82,7 @@ def analyze(
     for message in summary["warnings"]:
         click.echo(f"roughcontact: warning: {message}", err=True)
     if as_json:
-        click.echo(json.dumps(summary))
+        click.echo(json.dumps(json_safe(summary), allow_nan=False))
     else:
         click.echo(
             "units: areas per A0, loads N/A0 in units of E*, lengths (d_rep, band_width, "

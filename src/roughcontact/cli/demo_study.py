@@ -244,11 +244,12 @@ def run_demo_study(out_dir, *, size: int = 256, seeds=(1, 2, 3, 4, 5), workers=N
 
 def _outputs(out: Path, size, seeds, summary) -> dict:
     """Collect the finished study, draw the figures, write ``report.md``; the JSON dict."""
+    from .._io import write_netcdf_atomic
     from ..studies import collect_study
     from ..studies.aggregate import aggregate_seeds
 
     ds = collect_study(out / "tasks")
-    ds.to_netcdf(out / "demo.nc", engine="h5netcdf")
+    write_netcdf_atomic(ds, out / "demo.nc")  # atomic; a full disk is one clear error
     figures, map_rows = _figures(out, ds)
     rows = aggregate_seeds(ds)
     summary_text = summary_lines(rows)

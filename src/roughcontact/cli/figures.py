@@ -6,7 +6,7 @@ from pathlib import Path
 
 import click
 
-from .._validate import ParameterError
+from .._validate import DPI, TARGET_AREA, ParameterError, click_check
 
 
 def _load(source: Path):
@@ -62,9 +62,17 @@ def _load(source: Path):
     type=float,
     default=0.02,
     show_default=True,
-    help="A_rep/A0 of the contact maps of Fig. 1.",
+    callback=click_check(TARGET_AREA),
+    help=f"A_rep/A0 of the contact maps of Fig. 1 ({TARGET_AREA.accepted}).",
 )
-@click.option("--dpi", type=int, default=150, show_default=True, help="PNG resolution.")
+@click.option(
+    "--dpi",
+    type=int,
+    default=150,
+    show_default=True,
+    callback=click_check(DPI),
+    help=f"PNG resolution (dots per inch, {DPI.accepted}).",
+)
 def figures(source, out_dir, formats, target_area, dpi):
     """Draw the paper's figures from DIR, a study directory or a collected .nc file.
 

@@ -10,16 +10,42 @@ from pathlib import Path
 
 import click
 
-from .._validate import ParameterError
+from .._io import WriteError
+from .._signals import EXIT_TERMINATED, deferred, exit_code, interruptible
+from .._validate import (
+    GRID_SIZE,
+    MAX_ITER,
+    MAX_PATH_STEPS,
+    PIXEL_SIZE,
+    SEED,
+    TOL,
+    ParameterError,
+    click_check,
+    json_safe,
+)
 
 EXIT_BAD_INPUT = 2
 EXIT_NOT_CONVERGED = 3
 EXIT_TARGET_NOT_REACHED = 4
+EXIT_FAILURE = 1  # a step, a task or a write failed (a full disk): nothing finished is lost
+
+
+def _interrupted(err) -> str:
+    """The one-line message of a command stopped by Ctrl-C or SIGTERM."""
+    why = "terminated (SIGTERM)" if exit_code(err) == EXIT_TERMINATED else "interrupted (Ctrl-C)"
+    text = str(err).strip()
+    return text if text.startswith(why) else f"{why}: {text}" if text else why
 
 
 def _fail(message: str, code: int = EXIT_BAD_INPUT):
+    message = " ".join(str(message).split())  # one line, whatever the message holds
     click.echo(f"roughcontact: error: {message}", err=True)
     sys.exit(code)
+
+
+def _json(obj) -> str:
+    """One JSON object: NaN and infinities become null (JSON has neither)."""
+    return json.dumps(json_safe(obj), allow_nan=False)
 
 
 class _Group(click.Group):
@@ -27,11 +53,19 @@ class _Group(click.Group):
 
     def invoke(self, ctx):
         try:
-            return super().invoke(ctx)
+            with interruptible():  # SIGTERM stops a command as Ctrl-C does (exit 143, 130)
+                return super().invoke(ctx)
         except ParameterError as err:
             _fail(str(err))
+        except click.UsageError as err:  # click's own parsing: one line too, with --help's hint
+            where = f"{err.ctx.command_path}: " if err.ctx is not None else ""
+            _fail(f"{where}{err.format_message()} (see --help)")
+        except WriteError as err:  # a full disk: one line, what was finished is intact
+            _fail(str(err), EXIT_FAILURE)
         except OSError as err:
             _fail(str(err))
+        except KeyboardInterrupt as err:
+            _fail(_interrupted(err), exit_code(err))
 
 
 def _interaction_options(f):
@@ -168,7 +202,12 @@ def _substrate_options(f):
             help="Contact modulus E* = E/(1-ν²).",
         ),
         click.option(
-            "--pixel-size", type=float, default=1.0, show_default=True, help="a0 (length)."
+            "--pixel-size",
+            type=float,
+            default=1.0,
+            show_default=True,
+            callback=click_check(PIXEL_SIZE),
+            help=f"a0 (length, {PIXEL_SIZE.accepted}).",
         ),
         click.option(
             "--thickness", type=float, default=None, help="Layer thickness (default: half-space)."
@@ -191,10 +230,17 @@ def _substrate_options(f):
             "--tol",
             type=float,
             default=None,
-            help="Solver tolerance (default 1e-8; 1e-6, its floor, with --dtype float32).",
+            callback=click_check(TOL),
+            help=f"Solver tolerance, {TOL.accepted} (default 1e-8; 1e-6, its floor, with "
+            "--dtype float32).",
         ),
         click.option(
-            "--max-iter", type=int, default=5000, show_default=True, help="Iteration cap per state."
+            "--max-iter",
+            type=int,
+            default=5000,
+            show_default=True,
+            callback=click_check(MAX_ITER),
+            help=f"Iteration cap per state ({MAX_ITER.accepted}).",
         ),
         click.option(
             "--device",
@@ -223,16 +269,41 @@ def main():
 
 @main.command()
 @click.argument("out", type=click.Path(dir_okay=False))
-@click.option("--size", type=int, required=True, help="Grid size n (n x n sites).")
-@click.option("--size-y", type=int, default=None, help="Second grid size (default: --size).")
+@click.option(
+    "--size",
+    type=int,
+    required=True,
+    callback=click_check(GRID_SIZE),
+    help="Grid size n (n x n sites; at most what fits in memory).",
+)
+@click.option(
+    "--size-y",
+    type=int,
+    default=None,
+    callback=click_check(GRID_SIZE),
+    help="Second grid size (default: --size).",
+)
 @click.option("--hurst", type=float, required=True, help="Hurst exponent H in (0, 1].")
 @click.option("--rms-slope", type=float, default=None, help="rms slope h'rms (spectral).")
 @click.option("--rms-height", type=float, default=None, help="rms height (length).")
 @click.option("--short-cutoff", type=float, required=True, help="λs (length, >= 2 a0).")
 @click.option("--long-cutoff", type=float, default=None, help="λL (length; default L/2).")
 @click.option("--no-rolloff", is_flag=True, help="Zero power below 2π/λL instead of flat.")
-@click.option("--seed", type=int, default=None, help="Random seed (reproducible).")
-@click.option("--pixel-size", type=float, default=1.0, show_default=True, help="a0 (length).")
+@click.option(
+    "--seed",
+    type=int,
+    default=None,
+    callback=click_check(SEED),
+    help=f"Random seed (reproducible; {SEED.accepted}).",
+)
+@click.option(
+    "--pixel-size",
+    type=float,
+    default=1.0,
+    show_default=True,
+    callback=click_check(PIXEL_SIZE),
+    help=f"a0 (length, {PIXEL_SIZE.accepted}).",
+)
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
 def surface(
     out,
@@ -274,7 +345,7 @@ def surface(
     stats["path"] = str(path)
     stats["shape"] = list(h.shape)
     if as_json:
-        click.echo(json.dumps(stats))
+        click.echo(_json(stats))
     else:
         for k, v in stats.items():
             click.echo(f"{k:>18}: {v}")
@@ -341,7 +412,7 @@ def contact(
         )
     summary = res.summary()
     if as_json:
-        click.echo(json.dumps(summary))
+        click.echo(_json(summary))
     else:
         units = _units(modulus, pixel_size)
         for k, v in summary.items():
@@ -384,7 +455,7 @@ def _line(key, value, unit, width) -> str:
 
 
 #: The most steps ``roughcontact path`` takes (approach; the retraction doubles it).
-MAX_STEPS = 100_000
+MAX_STEPS = MAX_PATH_STEPS  # 100_000, shared with the studies' [path]
 OFFSET_UNITS = ("absolute", "length", "rms_height", "bearing_area")
 
 
@@ -460,7 +531,13 @@ def _path_values(option, start, stop, step):
     required=True,
     help="NetCDF file for the path.",
 )
-@click.option("--fields-at", type=int, multiple=True, help="Steps whose fields are stored.")
+@click.option(
+    "--fields-at",
+    type=int,
+    multiple=True,
+    help="Steps whose fields are stored (repeatable), in [-n, n) for a path of n steps "
+    "(negative: from the end); with --until-area, steps past the end are ignored.",
+)
 @click.option(
     "--checkpoint-seconds",
     type=click.FloatRange(min=0),
@@ -499,10 +576,12 @@ def path(
     """Follow a quasi-static approach (and retraction) path; write it to a NetCDF file.
 
     The file is rewritten atomically with the steps done so far every
-    --checkpoint-seconds, so a crash or kill loses at most that much work; Ctrl-C writes
-    the finished steps and exits with code 130. Exit code 3 if any state did not
-    converge, 4 if --until-area was not reached by STOP (the file is written), 2 on bad
-    input, 1 if a step failed (the steps before it are in the file). pull_off is null
+    --checkpoint-seconds, so a crash or kill -9 loses at most that much work; Ctrl-C
+    writes the finished steps and exits with code 130, SIGTERM (a scheduler, kill) the
+    same with code 143. Exit code 3 if any state did not converge, 4 if --until-area was
+    not reached by STOP (the file is written), 2 on bad input, 1 if a step failed (the
+    steps before it are in the file) or the disk is full (the file keeps its last
+    complete version). pull_off is null
     when it was not measured: without --retract, or when the retraction never separated
     the surfaces (its last step still has repulsive contact).
     """
@@ -554,6 +633,20 @@ def path(
         bar.update(1)
 
     kwargs = {"offsets": values} if offsets is not None else {"loads": values}
+    saved = {"steps": None}  # steps in the last file this run wrote
+
+    def save(partial):
+        """Write ``partial`` (Ctrl-C/SIGTERM held back meanwhile); a full disk exits 1."""
+        try:
+            with deferred():
+                _write_path(partial, output, surface_file)
+        except WriteError as err:
+            bar.close()
+            kept = saved["steps"]
+            kept = f"; it holds the {kept} steps of the last checkpoint" if kept else ""
+            _fail(f"{err}{kept}", EXIT_FAILURE)
+        saved["steps"] = int(partial.sizes["step"])
+
     try:
         ds = approach_retract(
             h,
@@ -566,20 +659,22 @@ def path(
             progress=show,
             device=device,
             dtype=dtype,
-            checkpoint=lambda partial: _write_path(partial, output, surface_file),
+            checkpoint=save,
             checkpoint_seconds=checkpoint_seconds,
             until_area=until_area,
             **kwargs,
         )
     except (PathError, PathInterrupted) as err:
         bar.close()
-        _write_path(err.partial, output, surface_file)
+        save(err.partial)
         done = f"the {err.partial.sizes['step']} steps before it are in {output}"
-        _fail(f"{err} ({done})", 130 if isinstance(err, PathInterrupted) else 1)
+        code = exit_code(err) if isinstance(err, PathInterrupted) else EXIT_FAILURE
+        why = "terminated (SIGTERM): " if code == EXIT_TERMINATED else ""
+        _fail(f"{why}{err} ({done})", code)
     bar.close()
     if offsets is not None:
         ds.attrs["offset_unit"] = offset_unit
-    _write_path(ds, output, surface_file)
+    save(ds)
     pull_off = float(ds.attrs["pull_off"])
     summary = {
         "pull_off": pull_off if math.isfinite(pull_off) else None,
@@ -624,16 +719,16 @@ def path(
 
 
 def _write_path(ds, output, surface_file):
-    """Write a path dataset atomically: a reader never sees a half-written file."""
-    import os
+    """Write a path dataset atomically: a reader never sees a half-written file.
+
+    Through :func:`roughcontact._io.write_netcdf_atomic` (built in memory, then written
+    and renamed over ``output``): a full disk raises :class:`roughcontact._io.WriteError`
+    (one line) with ``output`` as it was and no temporary file left.
+    """
+    from .._io import write_netcdf_atomic
 
     ds.attrs["surface_file"] = str(surface_file)
-    tmp = Path(output).with_name(f".{Path(output).name}.{os.getpid()}.tmp")
-    try:
-        ds.to_netcdf(tmp, engine="h5netcdf")
-        os.replace(tmp, output)
-    finally:
-        tmp.unlink(missing_ok=True)
+    write_netcdf_atomic(ds, output)
 
 
 @main.command()
@@ -690,7 +785,7 @@ def demo(size, seed, study_size, seeds, output, as_json):
         )
         out["study"] = {k: v for k, v in study.items() if k != "table_markdown"}
     if as_json:
-        click.echo(json.dumps(out, default=lambda v: None))
+        click.echo(json.dumps(json_safe(out), default=lambda v: None, allow_nan=False))
         return
     s = out["surface"]
     click.echo(

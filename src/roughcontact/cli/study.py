@@ -29,7 +29,27 @@ def study():
     "--scheduler",
     default=None,
     metavar="ADDRESS",
-    help="Run on an existing Dask cluster (tcp://host:8786) instead of a local one.",
+    help="Run on an existing Dask cluster (tcp://host:8786, tls://host:8786) instead of a "
+    "local one.",
+)
+@click.option(
+    "--tls-ca-file",
+    default=None,
+    metavar="PEM",
+    help="CA certificate of a tls:// --scheduler (with --tls-cert; default: Dask's config "
+    "distributed.comm.tls.*).",
+)
+@click.option(
+    "--tls-cert",
+    default=None,
+    metavar="PEM",
+    help="This client's certificate for a tls:// --scheduler (may hold the key too).",
+)
+@click.option(
+    "--tls-key",
+    default=None,
+    metavar="PEM",
+    help="This client's private key for a tls:// --scheduler, if not in --tls-cert.",
 )
 @click.option(
     "--workers",
@@ -43,15 +63,39 @@ def study():
     default=None,
     help="Where the workers compute: cpu (default), cuda or cuda:N (CuPy on a GPU).",
 )
-def run(study_file, out_dir, resume, scheduler, workers, no_progress, device):
+@click.option(
+    "--dashboard",
+    is_flag=True,
+    help="Open the local cluster's Dask dashboard on 127.0.0.1:8787 (plain HTTP, readable "
+    "by any local user; default: no HTTP port).",
+)
+def run(
+    study_file,
+    out_dir,
+    resume,
+    scheduler,
+    tls_ca_file,
+    tls_cert,
+    tls_key,
+    workers,
+    no_progress,
+    device,
+    dashboard,
+):
     """Run every task of STUDY.toml; store each result in the -o directory as it finishes.
+
+    The local cluster talks TLS with temporary credentials (no other process can connect
+    to it) and opens no HTTP port unless --dashboard. A tls:// --scheduler is reached
+    with --tls-ca-file/--tls-cert/--tls-key or Dask's configuration.
 
     Exit code 0 when all tasks finished (steps that did not converge are reported in
     the summary, not counted as failures), 1 if any task failed, 2 on bad input.
     """
     from ..studies import load_study, run_study
+    from ..studies.cluster import tls_security
 
     spec = load_study(study_file)  # validated before anything starts
+    security = tls_security(tls_ca_file, tls_cert, tls_key)
     if not no_progress:
         click.echo(f"study {spec.name!r}: {len(spec.tasks)} tasks -> {out_dir}", err=True)
     summary = run_study(
@@ -62,6 +106,8 @@ def run(study_file, out_dir, resume, scheduler, workers, no_progress, device):
         workers=workers,
         progress=not no_progress,
         device=device,
+        security=security,
+        dashboard=dashboard,
     )
     click.echo(str(summary))
     if not summary.ok:
@@ -80,11 +126,11 @@ def run(study_file, out_dir, resume, scheduler, workers, no_progress, device):
 @click.option("--no-timings", is_flag=True, help="Leave out wall-clock times (reproducible files).")
 def collect(out_dir, output, no_timings):
     """Combine the task files of study directory DIR into one NetCDF file."""
+    from .._io import write_netcdf_atomic
     from ..studies import collect_study
-    from ..studies.store import atomic_write
 
     ds = collect_study(out_dir, include_timings=not no_timings)
-    atomic_write(output, lambda tmp: ds.to_netcdf(tmp, engine="h5netcdf"))
+    write_netcdf_atomic(ds, output)  # a full disk: one line, exit 1, no file half-written
     click.echo(
         f"{ds.sizes['task']} tasks ({ds.attrs['tasks_done']} done, "
         f"{ds.attrs['tasks_failed']} failed, {ds.attrs['tasks_missing']} missing), "

@@ -21,7 +21,14 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .._backend import array_device, array_namespace, convolve, is_numpy_array, rfft2
-from .._validate import ParameterError, in_range, positive, shape2d
+from .._validate import (
+    CONTACT_MODULUS,
+    PIXEL_SIZE,
+    ParameterError,
+    in_range,
+    layer_thickness,
+    shape2d,
+)
 from .stiffness import (
     bonded_layer_stiffness,
     frictionless_layer_stiffness,
@@ -51,11 +58,14 @@ class Substrate:
     shape : int or (int, int)
         Grid size ``(nx, ny)``; rectangular grids are allowed.
     contact_modulus : float
-        Contact modulus :math:`E^* = E/(1-\nu^2)` (pressure units; 1 in lattice units).
+        Contact modulus :math:`E^* = E/(1-\nu^2)` (pressure units; 1 in lattice units),
+        in [1e-100, 1e100].
     pixel_size : float
-        Grid spacing :math:`a_0` (length units). The period is ``L = n * pixel_size``.
+        Grid spacing :math:`a_0` (length units), in [1e-25, 1e25]. The period is
+        ``L = n * pixel_size``.
     thickness : float or None
-        Layer thickness ``t`` (length); None for a half-space.
+        Layer thickness ``t`` (length), in [1e-6, 1e100] x pixel_size; None for a
+        half-space.
     poisson : float
         Poisson ratio ν in [0, 0.5]; only used for a finite thickness.
     base : {"bonded", "frictionless"}
@@ -80,13 +90,14 @@ class Substrate:
     def __post_init__(self):
         set_ = object.__setattr__
         set_(self, "shape", shape2d("shape", self.shape))
-        set_(self, "contact_modulus", positive("contact_modulus", self.contact_modulus))
-        set_(self, "pixel_size", positive("pixel_size", self.pixel_size))
+        modulus = CONTACT_MODULUS.check("contact_modulus", self.contact_modulus)
+        set_(self, "contact_modulus", modulus)
+        set_(self, "pixel_size", PIXEL_SIZE.check("pixel_size", self.pixel_size))
         set_(self, "poisson", in_range("poisson", self.poisson, 0.0, 0.5))
         if self.base not in _BASES:
             raise ParameterError(f"base must be one of {_BASES}, got {self.base!r}")
         if self.thickness is not None:
-            set_(self, "thickness", positive("thickness", self.thickness))
+            set_(self, "thickness", layer_thickness("thickness", self.thickness, self.pixel_size))
         set_(self, "stiffness", self._make_stiffness())
 
     def _make_stiffness(self) -> np.ndarray:

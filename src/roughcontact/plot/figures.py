@@ -35,7 +35,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .._validate import ParameterError
+from .._validate import DPI, ParameterError
 from ..theory import pastewka_robbins as pr
 from . import _data as D
 from ._axes import decades, figure, log_axes, loglog
@@ -413,7 +413,7 @@ def save_figures(dataset, out_dir, formats=("png", "pdf"), *, maps=None, dpi=150
         Path datasets (or files, or pressure arrays) for :func:`figure1`; without them
         Fig. 1 is not made (a collected dataset holds no contact maps).
     dpi : int
-        Resolution of raster formats.
+        Resolution of raster formats (dots per inch, an integer in [10, 2400]).
     **fig1
         Passed to :func:`figure1` (``target_area``, ``labels``, ``region``).
 
@@ -429,6 +429,7 @@ def save_figures(dataset, out_dir, formats=("png", "pdf"), *, maps=None, dpi=150
             dataset = xr.load_dataset(dataset, engine="h5netcdf")
         except (OSError, ValueError) as err:
             raise ParameterError(f"{str(dataset)!r} is not a readable NetCDF file: {err}") from None
+    dpi = DPI.check("dpi", dpi)  # before any work: matplotlib fails late on a huge canvas
     formats = tuple(formats)
     if not formats or any(not isinstance(f, str) or not f.isalnum() for f in formats):
         raise ParameterError(

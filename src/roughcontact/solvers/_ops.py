@@ -14,7 +14,7 @@ from .._backend import (
     is_numpy_array,
     to_device,
 )
-from .._validate import ParameterError, heights2d
+from .._validate import ParameterError, heights2d, real_array, tolerance
 
 __all__ = [
     "DEFAULT_TOL",
@@ -162,7 +162,8 @@ def total(x) -> float:
 
 def false_position(a, f_a, b, f_b) -> float:
     """The regula falsi point of the bracket ``[a, b]`` (its midpoint if that falls outside)."""
-    x = (a * f_b - b * f_a) / (f_b - f_a)
+    d = f_b - f_a  # 0 only for a degenerate (e.g. NaN-valued) bracket: bisect then
+    x = (a * f_b - b * f_a) / d if d != 0 else math.nan
     return x if min(a, b) < x < max(a, b) else 0.5 * (a + b)
 
 
@@ -177,7 +178,7 @@ def anderson_bjorck(a, f_a, b, f_b, x, f):
     """
     if (f > 0) != (f_b > 0):
         return b, f_b, x, f
-    m = 1.0 - f / f_b
+    m = 1.0 - f / f_b if f_b != 0 else 0.0  # f_b = 0: a NaN target; never divide by it
     return a, f_a * (m if m > 0 else 0.5), x, f
 
 
@@ -321,6 +322,7 @@ def check_problem(heights, substrate, tol, offset=None, device=None, dtype=None)
     None gives :data:`DEFAULT_TOL` for that precision; in float32 a tolerance below its
     floor is rejected (it could never be met).
     """
+    heights = real_array("heights", heights)  # before to_device casts complex or bool
     h = heights2d("heights", to_device(heights, device, dtype or "float64"))
     if is_numpy_array(h):
         h = np.ascontiguousarray(h)
@@ -333,14 +335,7 @@ def check_problem(heights, substrate, tol, offset=None, device=None, dtype=None)
     precision = dtype_name(h)
     if tol is None:
         return h, DEFAULT_TOL[precision]
-    if not float(tol) > 0:
-        raise ParameterError(f"tol must be > 0, got {tol!r}")
-    if float(tol) < DEFAULT_TOL["float32"] and precision == "float32":
-        raise ParameterError(
-            f"tol must be >= {DEFAULT_TOL['float32']:g} with dtype='float32' (single "
-            f"precision cannot resolve smaller residuals), got {tol!r}; use dtype='float64'"
-        )
-    return h, float(tol)
+    return h, tolerance("tol", tol, precision, DEFAULT_TOL["float32"])
 
 
 class StallGuard:

@@ -222,6 +222,7 @@ def minimize_energy_bounded(
             or active_old is None
             or bool(xp.any(active != active_old))
         )
+        restart = restart or gz_old == 0  # no previous direction to conjugate to
         beta = 0.0 if restart else max(0.0, (gz - _dot(rr, z_old)) / gz_old)  # PR+
         s = -z + beta * s if beta > 0 else -z
         slope0 = _dot(rr, s)

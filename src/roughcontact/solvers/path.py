@@ -14,7 +14,7 @@ from .._backend import (
     to_device,
     to_numpy,
 )
-from .._validate import ParameterError
+from .._validate import ParameterError, step_indices, step_list
 from ..analysis.contact_geometry import contact_patches
 from .result import STATE_SCALARS
 from .solve import solve
@@ -76,9 +76,11 @@ def approach_retract(
         ``until_area``: through the values the approach visited).
     fields_at : sequence of int
         Steps whose pressure, gap and deflection fields are kept (``field_step`` dim).
-        Negative steps count from the end of the path followed; with ``until_area``,
-        whose length is known only when the approach stops, steps past its end are
-        ignored (without it they wrap around, as before).
+        Negative steps count from the end of the path followed. Without ``until_area``
+        a step outside ``[-n, n)`` (n: the steps of the whole path, retraction
+        included) is a ParameterError, raised before any solve. With ``until_area``,
+        whose length is known only when the approach stops, steps past the end of the
+        path followed are ignored (no error: the length depends on the solves).
     jump_factor : float
         A step is flagged as an instability (jump into or out of contact) when the
         largest change of the deflection exceeds ``jump_factor`` times the change of
@@ -167,31 +169,35 @@ def approach_retract(
                 heights, substrate, interaction, initial=previous, tol=tol,
                 max_iter=max_iter, dtype=dtype, **kwargs,
             )  # fmt: skip
+            if "non-finite" in res.message or not math.isfinite(res.load):
+                why = f"step {step} ({control} = {value:g}): {res.message}"
+                raise PathError(why, dataset())
+            row = {k: getattr(res, k) for k in STATE_SCALARS}
+            row["repulsive_patches"] = int(contact_patches(res.pressure > 0)[1].size)
+            if previous is None:
+                row["jump"] = False
+            else:
+                dw = float(np.abs(res.deflection - previous.deflection).max())
+                dd = abs(res.offset - previous.offset)
+                row["jump"] = bool(dw > jump_factor * dd + jump_length)
+            rows.append(row)
+            plan.keep(step, (res.pressure, res.gap, res.deflection))
+            if until_area is not None and plan.approach_steps is None:
+                if res.repulsive_area >= until_area or step == values.size - 1:
+                    plan.stop_approach(step)
+            previous = res
+            if progress is not None:
+                progress(step + 1, plan.size, res)
+            if checkpoint is not None and time.perf_counter() - saved >= checkpoint_seconds:
+                checkpoint(dataset())
+                saved = time.perf_counter()
         except KeyboardInterrupt:
+            # in the solve or in the step's bookkeeping, progress or checkpoint after it:
+            # the partial path holds every step whose row is in (this one, once it is)
+            where = "in" if len(rows) == step else "after"
             raise PathInterrupted(
-                f"interrupted in step {step} ({control} = {value:g})", dataset()
+                f"interrupted {where} step {step} ({control} = {value:g})", dataset()
             ) from None
-        if "non-finite" in res.message or not math.isfinite(res.load):
-            raise PathError(f"step {step} ({control} = {value:g}): {res.message}", dataset())
-        row = {k: getattr(res, k) for k in STATE_SCALARS}
-        row["repulsive_patches"] = int(contact_patches(res.pressure > 0)[1].size)
-        if previous is None:
-            row["jump"] = False
-        else:
-            dw = float(np.abs(res.deflection - previous.deflection).max())
-            dd = abs(res.offset - previous.offset)
-            row["jump"] = bool(dw > jump_factor * dd + jump_length)
-        rows.append(row)
-        plan.keep(step, (res.pressure, res.gap, res.deflection))
-        if until_area is not None and plan.approach_steps is None:
-            if res.repulsive_area >= until_area or step == values.size - 1:
-                plan.stop_approach(step)
-        previous = res
-        if progress is not None:
-            progress(step + 1, plan.size, res)
-        if checkpoint is not None and time.perf_counter() - saved >= checkpoint_seconds:
-            checkpoint(dataset())
-            saved = time.perf_counter()
         step += 1
     return dataset()
 
@@ -218,7 +224,7 @@ class _Plan:
     def __init__(self, approach, retract, fields_at, known):
         self.approach = approach
         self.retract = bool(retract)
-        self.requested = [int(i) for i in fields_at]
+        self.requested = step_list("fields_at", fields_at)
         self.fields = {}
         self._held = {}
         self._depth = max([-i for i in self.requested if i < 0], default=0)
@@ -226,8 +232,8 @@ class _Plan:
         self._set_values(approach)
         if known:
             self.stop_approach(approach.size - 1)
-            # the historical behaviour: every index wraps around the whole path
-            self._wanted = {i % self.size for i in self.requested}
+            # the length is known: a step outside [-size, size) is an error, before any work
+            self._wanted = set(step_indices("fields_at", self.requested, self.size))
         else:
             self._wanted = {i for i in self.requested if i >= 0}
 

@@ -111,6 +111,59 @@ STIFF_FRACTION = 0.1
 #: 1.7 -> 1.1 (ℓa = 0.005) from 1e-3 to this; 0.2 changed the paths (+12 % at ℓa = 0.05).
 LINE_SEARCH_RTOL = 0.05
 
+#: float64 solves stop as stalled (see :class:`FloorGuard`) when their best residual has
+#: not halved in FLOOR_PATIENCE iterations and lies within FLOOR_ULPS floors eps max|p|/E*.
+FLOOR_PATIENCE = 100
+FLOOR_ULPS = 256
+_EPS64 = 2.220446049250313e-16  # float64 machine epsilon, 2**-52
+
+
+class FloorGuard:
+    """Stops a float64 solve stuck at its rounding floor early, and says why.
+
+    The residual ``max |K w - p_int| / E*`` is a difference of pressures of size
+    ``p = max |p_int|``, each rounded to float64: it cannot fall much below
+    ``p eps / E*`` (``eps = 2**-52``; measured: 1 to 15 such units). Under deep compression
+    (pressures of ~1e8 E* and more, offsets far into contact) that floor lies above ``tol``, and
+    a solve used to spend its whole iteration cap there (256², lj93smooth, 1.3e13 E*: the
+    residual pinned at 0.7 floors from iteration 100 on, 0.3 s an iteration). The guard
+    declares a stall when the best residual has not halved over :data:`FLOOR_PATIENCE`
+    iterations and is within :data:`FLOOR_ULPS` floors; the state is then as accurate as
+    float64 allows and comes back with ``converged=False``. The convergence test comes
+    first, and a solve above the floor (every normal one: tol 1e-8 is ~5e7 floors at
+    p ~ 1 E*) is never stopped by it, so iteration counts do not change. float32 solves
+    keep ``stall`` (:class:`._ops.StallGuard`), which this wraps.
+    """
+
+    def __init__(self, stall, precision, pressure_scale, contact_modulus, tol):
+        self.stall, self.scale = stall, pressure_scale  # scale(): max |p_int| now
+        self.active = precision == "float64"
+        self.modulus, self.tol = contact_modulus, tol
+        self.reference, self.best, self.since = math.inf, math.inf, 0
+
+    def __call__(self, residual: float) -> str | None:
+        """The not-converged message when the solve is stuck at the floor, else None."""
+        if (message := self.stall(residual)) is not None or not self.active:
+            return message
+        self.best = min(self.best, residual)
+        if self.best < 0.5 * self.reference:
+            self.reference, self.since = self.best, 0
+            return None
+        self.since += 1
+        if self.since < FLOOR_PATIENCE:
+            return None
+        pressure = self.scale()
+        floor = _EPS64 * pressure / self.modulus
+        if not self.best <= FLOOR_ULPS * floor:  # slow, but above the floor: a new window
+            self.reference, self.since = self.best, 0
+            return None
+        return (
+            f"stalled at the float64 rounding floor: residual {self.best:.3g} (units of E*), "
+            f"pressure scale p = {pressure:.3g} (max |p|), floor ~p·eps/E* = {floor:.3g}; no "
+            f"progress in {FLOOR_PATIENCE} iterations: the state is as accurate as float64 "
+            f"allows (tol {self.tol:g} is below what float64 resolves at this pressure)"
+        )
+
 
 def _local(evaluate, cutoff, gap):
     """``evaluate(gap)`` (the interaction's pressure or curvature) only where the gap is
@@ -234,7 +287,7 @@ def minimize_energy(
     s, ks, z, z_old = (xp.empty_like(gap) for _ in range(4))
     gz_old = 1.0
     converged, message, residual, it = False, "iteration cap reached", math.inf, 0
-    stall = StallGuard(dtype_name(h))
+    stall = FloorGuard(StallGuard(dtype_name(h)), dtype_name(h), lambda: _largest(p_near), es, tol)
     while True:
         residual = max(float(xp.max(gr)), -float(xp.min(gr))) / es
         if not math.isfinite(residual):
@@ -264,7 +317,9 @@ def minimize_energy(
             out=z, work=work, fast=fast, result=fast_result, background=overlap,
         )  # fmt: skip
         gz = _dot(gr, z)
-        beta = 0.0 if restart else max(0.0, (gz - _dot(gr, z_old)) / gz_old)  # PR+
+        # PR+ (gz_old is 0 only at the rounding floor of a deeply compressed state)
+        restart = restart or gz_old == 0
+        beta = 0.0 if restart else max(0.0, (gz - _dot(gr, z_old)) / gz_old)
         # s = -z + beta s (in place), and below ks = K s = -K z + beta ks
         s = work.scale_sub(s, beta, z) if beta > 0 else work.negative(s, z)
         slope0 = _dot(gr, s)
@@ -316,6 +371,14 @@ def minimize_energy(
         repulsive=xp.reshape(rep, shape),
         attractive=xp.reshape(att, shape),
     )
+
+
+def _largest(values) -> float:
+    """``max |values|`` (0 for none): the pressure scale of :class:`FloorGuard`."""
+    if values.shape[0] == 0:
+        return 0.0
+    xp = array_namespace(values)
+    return float(xp.max(xp.abs(values)))
 
 
 def _stiff_sites(interaction, gap, self_stiffness, work=None):

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 
 from .._backend import computes_on_heights_device
-from .._validate import ParameterError
+from .._validate import MAX_ITER, ParameterError, tolerance
 from ..interactions.hardwall import HardWall
 from .bounded import minimize_energy_bounded
 from .load_control import solve_at_load
@@ -55,10 +55,10 @@ def solve(
     initial : ContactResult, optional
         Warm start from a previous state.
     tol : float, optional
-        Convergence tolerance (the solver's measure; see its documentation).
+        Convergence tolerance (the solver's measure; see its documentation), in (0, 1).
         Default 1e-8 (float64) or 1e-6 (float32, also the smallest allowed there).
     max_iter : int
-        Iteration cap; a solve that reaches it returns ``converged=False``.
+        Iteration cap (>= 1); a solve that reaches it returns ``converged=False``.
     callback : callable, optional
         ``callback(iteration, residual)``; return True to stop early.
     device : {None, "cpu", "cuda", "cuda:N"}, optional
@@ -74,6 +74,9 @@ def solve(
     ContactResult
         With ``converged``, ``iterations``, ``residual`` and ``message`` — never silent.
     """
+    if tol is not None:
+        tolerance("tol", tol)  # (0, 1); the float32 floor is checked with the precision
+    max_iter = MAX_ITER.check("max_iter", max_iter)
     interaction = HardWall() if interaction is None else interaction
     if isinstance(interaction, HardWall):
         return polonsky_keer(

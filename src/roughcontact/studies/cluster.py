@@ -1,21 +1,44 @@
-"""Where the tasks run: an in-process LocalCluster, a remote Dask scheduler, or here.
+"""Where the tasks run: an in-process cluster, a remote Dask scheduler, or here.
+
+The in-process cluster (one scheduler, single-threaded worker processes) talks TLS with
+temporary credentials (``distributed.security.Security.temporary()``, made for each run
+and held in memory only): every connection must present a certificate of that run, so
+another local process cannot connect a client and run code as the user. It opens no
+HTTP port (no dashboard, no Prometheus or health routes; Dask would open one on the
+scheduler, 8787, and one on every worker even with ``dashboard_address=None``) unless the
+dashboard is asked for (``dashboard=True``, ``--dashboard``: the scheduler's, on
+127.0.0.1, plain HTTP without authentication).
 
 A remote address is checked (TCP connection and a Dask handshake, ``CONNECT_TIMEOUT``
 seconds) before any work starts, so a wrong or unreachable address is one clear error.
+A ``tls://`` scheduler is reached with the given ``security`` (a
+``distributed.security.Security``, e.g. from :func:`tls_security`) or, without one, with
+the TLS settings of Dask's configuration (``distributed.comm.tls.*``).
 """
 
 from __future__ import annotations
 
 import os
 import socket
+import sys
 import traceback
+from pathlib import Path
 
 from .._validate import ParameterError
 from .task import run_task
 
-__all__ = ["CONNECT_TIMEOUT", "connect", "outcomes"]
+__all__ = [
+    "CONNECT_TIMEOUT",
+    "DASHBOARD_ADDRESS",
+    "check_options",
+    "connect",
+    "outcomes",
+    "tls_security",
+]
 
 CONNECT_TIMEOUT = 5.0  # seconds to reach a remote scheduler before giving up
+DASHBOARD_ADDRESS = "127.0.0.1:8787"  # the local dashboard, when asked for (loopback only)
+_QUIET = ("_QuietScheduler", "_QuietWorker")
 
 
 def _default_workers() -> int:
@@ -25,12 +48,172 @@ def _default_workers() -> int:
         return os.cpu_count() or 1
 
 
-def connect(scheduler, workers):
-    """A Dask client (and the cluster we own, or None); errors before any work starts."""
+def _no_http_server(self, routes, dashboard_address, default_port=0, ssl_options=None):
+    """``Node.start_http_server`` that listens nowhere (an unbound server, no routes)."""
+    from distributed.http.routing import RoutingApplication
+    from tornado.httpserver import HTTPServer
+
+    self.http_application = RoutingApplication([])
+    self.http_server = HTTPServer(self.http_application)  # never bound: no socket
+
+
+def _quiet_classes() -> dict:
+    """A Scheduler and a Worker that open no HTTP port (made on first use: Dask is imported
+    only when a study runs). Reached as module attributes, so that the worker processes
+    find the class by name when they unpickle it."""
+    from distributed import Scheduler, Worker
+
+    classes = {}
+    for name, base in zip(_QUIET, (Scheduler, Worker), strict=True):
+        cls = type(name, (base,), {"start_http_server": _no_http_server, "__module__": __name__})
+        cls.__qualname__ = name
+        classes[name] = cls
+    return classes
+
+
+def __getattr__(name):
+    if name in _QUIET:
+        globals().update(_quiet_classes())
+        return globals()[name]
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def _local_cluster(n: int, dashboard: bool):
+    """An in-process cluster on 127.0.0.1 with TLS (temporary credentials), no HTTP port."""
     import logging
 
-    from distributed import Client, LocalCluster
+    from distributed import Nanny, Scheduler, SpecCluster
+    from distributed.security import Security
+    from distributed.worker_memory import parse_memory_limit
 
+    try:
+        security = Security.temporary()
+    except ImportError as err:  # pragma: no cover - cryptography is a dependency
+        raise ParameterError(
+            f"the local Dask cluster needs the 'cryptography' package for its TLS "
+            f"credentials ({err}); install it (pip install cryptography)"
+        ) from None
+    this = sys.modules[__name__]  # the quiet classes: module attributes, made on first use
+    scheduler = {
+        "cls": Scheduler if dashboard else this._QuietScheduler,
+        "options": {
+            "host": "127.0.0.1",
+            "port": 0,
+            "protocol": "tls://",
+            "security": security,
+            "dashboard": dashboard,
+            "dashboard_address": DASHBOARD_ADDRESS if dashboard else None,
+        },
+    }
+    worker = {
+        "cls": Nanny,
+        "options": {
+            "host": "127.0.0.1",
+            "protocol": "tls://",
+            "security": security,
+            "nthreads": 1,
+            "worker_class": this._QuietWorker,
+            "dashboard": False,
+            "dashboard_address": None,
+            "silence_logs": logging.ERROR,
+            "memory_limit": parse_memory_limit(
+                "auto", 1, n, logger=logging.getLogger("distributed.worker_memory")
+            ),
+        },
+    }
+    return SpecCluster(
+        scheduler=scheduler,
+        workers={i: worker for i in range(n)},
+        worker=worker,
+        security=security,
+        silence_logs=logging.ERROR,
+    )
+
+
+def tls_security(ca_file=None, cert=None, key=None):
+    """A ``distributed.security.Security`` for a ``tls://`` scheduler, from PEM files.
+
+    Parameters
+    ----------
+    ca_file : path-like
+        The cluster's CA certificate (``--tls-ca-file``): the scheduler must present a
+        certificate that it signed.
+    cert : path-like
+        This client's certificate (``--tls-cert``), signed by that CA; it may hold the
+        private key as well.
+    key : path-like, optional
+        This client's private key (``--tls-key``), when not in ``cert``.
+
+    Returns
+    -------
+    distributed.security.Security or None
+        None when no file is given (then Dask's configuration applies,
+        ``distributed.comm.tls.*``); else TLS required, with these files.
+
+    Raises
+    ------
+    ParameterError
+        A file is missing or unreadable, or ``ca_file`` or ``cert`` is missing while the
+        other is given (Dask needs both: the connection authenticates both ends).
+    """
+    given = {"tls_ca_file": ca_file, "tls_cert": cert, "tls_key": key}
+    if all(v is None for v in given.values()):
+        return None
+    for name in ("tls_ca_file", "tls_cert"):
+        if given[name] is None:
+            others = ", ".join(n for n, v in given.items() if v is not None)
+            raise ParameterError(
+                f"{name} is required with {others} (TLS to the scheduler needs the CA file "
+                "and this client's certificate: --tls-ca-file and --tls-cert)"
+            )
+    for name, value in given.items():
+        if value is not None and not (Path(value).is_file() and os.access(value, os.R_OK)):
+            raise ParameterError(f"{name} must be a readable PEM file, got {str(value)!r}")
+    from distributed.security import Security
+
+    return Security(
+        require_encryption=True,
+        tls_ca_file=str(ca_file),
+        tls_client_cert=str(cert),
+        tls_client_key=None if key is None else str(key),
+    )
+
+
+def check_options(scheduler, workers, security, dashboard) -> None:
+    """Reject options that do not apply to ``scheduler`` (before anything is written)."""
+    if security is not None:
+        from distributed.security import Security
+
+        if not isinstance(security, Security):
+            raise ParameterError(
+                "security must be a distributed.security.Security (or None), got "
+                f"{type(security).__name__}"
+            )
+        if not isinstance(scheduler, str) or scheduler == "synchronous":
+            raise ParameterError(
+                "security (--tls-ca-file, --tls-cert, --tls-key) applies to a remote "
+                "scheduler (--scheduler tls://host:port) only; the local cluster makes "
+                "its own temporary TLS credentials"
+            )
+    if dashboard not in (True, False):
+        raise ParameterError(f"dashboard must be True or False, got {dashboard!r}")
+    if dashboard and scheduler is not None:
+        raise ParameterError(
+            "dashboard (--dashboard) applies to the local cluster only, not to --scheduler "
+            "(the remote scheduler serves its own) or 'synchronous'"
+        )
+
+
+def connect(scheduler, workers, security=None, dashboard=False):
+    """A Dask client (and the cluster we own, or None); errors before any work starts.
+
+    ``security`` (a ``distributed.security.Security``) is used to reach a remote
+    scheduler; ``dashboard`` opens the local cluster's dashboard on
+    :data:`DASHBOARD_ADDRESS` (else the local cluster opens no HTTP port).
+    """
+    from distributed import Client
+
+    check_options(scheduler, workers, security, dashboard)
     if scheduler is None:
         import dask
 
@@ -41,14 +224,14 @@ def connect(scheduler, workers):
         # kernel (83 s wall; 37 s without). Our workers keep glibc's defaults (an explicit
         # MALLOC_TRIM_THRESHOLD_ in the environment still wins, as in Dask).
         with dask.config.set({"distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None}):
-            cluster = LocalCluster(
-                n_workers=n,
-                threads_per_worker=1,
-                processes=True,
-                dashboard_address=None,
-                silence_logs=logging.ERROR,
-            )
-        return Client(cluster), cluster
+            cluster = _local_cluster(n, dashboard)
+        try:
+            # not the default client: dask work of this process (xarray's NetCDF writes of the
+            # task files, a notebook's computations) stays local, uses no distributed locks
+            return Client(cluster, set_as_default=False), cluster
+        except BaseException:
+            cluster.close()
+            raise
     if isinstance(scheduler, Client):
         return scheduler, None
     if not isinstance(scheduler, str) or not scheduler.strip():
@@ -60,9 +243,16 @@ def connect(scheduler, workers):
             f"workers = {workers!r} applies to the local cluster only, not to --scheduler "
             "(the remote cluster has its own workers)"
         )
-    address = _reachable(scheduler.strip())
+    if security is None:
+        from distributed.security import Security
+
+        security = Security()  # Dask's configuration: distributed.comm.tls.*
+    address = _reachable(scheduler.strip(), security)
     try:
-        return Client(address, timeout=CONNECT_TIMEOUT, set_as_default=False), None
+        return (
+            Client(address, timeout=CONNECT_TIMEOUT, set_as_default=False, security=security),
+            None,
+        )
     except (OSError, TimeoutError, ValueError) as err:
         raise ParameterError(
             f"cannot connect to the Dask scheduler at {scheduler!r} within "
@@ -70,11 +260,12 @@ def connect(scheduler, workers):
         ) from None
 
 
-def _reachable(address: str) -> str:
+def _reachable(address: str, security=None) -> str:
     """``scheme://host:port`` of a scheduler that accepts TCP connections, else an error.
 
     A refused or unroutable address fails here at once (or after ``CONNECT_TIMEOUT``
-    seconds), instead of after Dask's retries.
+    seconds), instead of after Dask's retries. ``security``: the TLS settings of a
+    ``tls://`` address.
     """
     from distributed.comm.addressing import parse_address, parse_host_port, unparse_host_port
 
@@ -95,7 +286,20 @@ def _reachable(address: str) -> str:
             ) from None
     address = f"{scheme}://{unparse_host_port(host, port)}"
     try:
-        _handshake(address)
+        args = {} if security is None else security.get_connection_args("client")
+    except (OSError, ValueError) as err:  # unreadable or mismatched certificate and key
+        raise ParameterError(
+            f"cannot load the TLS credentials for {address!r} ({type(err).__name__}: {err}); "
+            "check --tls-ca-file, --tls-cert and --tls-key"
+        ) from None
+    if scheme == "tls" and args.get("ssl_context") is None:
+        raise ParameterError(
+            f"scheduler = {address!r} needs TLS credentials: pass --tls-ca-file and "
+            "--tls-cert (and --tls-key) or security=distributed.security.Security(...), "
+            "or set distributed.comm.tls.* in Dask's configuration"
+        )
+    try:
+        _handshake(address, args)
     except Exception as err:  # noqa: BLE001 - anything but a Dask handshake
         raise ParameterError(
             f"{address!r} does not answer as a Dask scheduler within {CONNECT_TIMEOUT:g} s "
@@ -104,7 +308,7 @@ def _reachable(address: str) -> str:
     return address
 
 
-def _handshake(address: str) -> None:
+def _handshake(address: str, connection_args=None) -> None:
     """Open and close one Dask comm to ``address`` (in a thread with its own event loop)."""
     import asyncio
     from concurrent.futures import ThreadPoolExecutor
@@ -112,7 +316,7 @@ def _handshake(address: str) -> None:
     from distributed.comm import connect as dask_connect
 
     async def probe():
-        comm = await dask_connect(address, timeout=CONNECT_TIMEOUT)
+        comm = await dask_connect(address, timeout=CONNECT_TIMEOUT, **(connection_args or {}))
         await comm.close()
 
     def run():

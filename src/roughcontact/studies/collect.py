@@ -91,6 +91,61 @@ def _read(out, task_id):
     return "missing", "not run or not finished (run the study again with --resume)", {}, {}
 
 
+#: The keys of a manifest (``study.json``) that collecting reads, and their types.
+_MANIFEST_KEYS = {"name": str, "sha256": str, "settings": dict, "tasks": list}
+
+
+def _check_manifest(manifest, out: Path) -> dict:
+    """The manifest if it has what collecting reads; else one ParameterError line."""
+    where = f"{str(out / store.MANIFEST)!r}"
+    hint = "(edited or damaged: not as 'roughcontact study run' writes it)"
+    if not isinstance(manifest, dict):
+        raise ParameterError(
+            f"{where} is not a study manifest: expected a JSON object, got "
+            f"{type(manifest).__name__} {hint}"
+        )
+    for key, kind in _MANIFEST_KEYS.items():
+        if key not in manifest:
+            raise ParameterError(f"{where} lacks the key {key!r} {hint}")
+        if not isinstance(manifest[key], kind):
+            raise ParameterError(
+                f"{where}: {key} = {_short(manifest[key])} has the wrong type: expected "
+                f"{kind.__name__} {hint}"
+            )
+    for i, task in enumerate(manifest["tasks"]):
+        ok = (
+            isinstance(task, dict)
+            and isinstance(task.get("id"), str)
+            and isinstance(task.get("params"), dict)
+        )
+        if not ok:
+            raise ParameterError(
+                f"{where}: tasks[{i}] = {_short(task)} is not a task: expected an object "
+                f"with a string 'id' and an object 'params' {hint}"
+            )
+    for key in (*SWEEP_KEYS, "seed"):  # the coordinates on 'task'
+        values = [t["params"].get(key) for t in manifest["tasks"]]
+        ints = key in ("size", "seed")
+        scalar = (int,) if ints else (str, bool, int, float, type(None))
+        text = [isinstance(v, str) for v in values]
+        bad = [v for v in values if not isinstance(v, scalar) or (ints and isinstance(v, bool))]
+        if bad or (any(text) and not all(text)):
+            value = bad[0] if bad else values
+            expected = "integers" if ints else "numbers, or strings in every task"
+            raise ParameterError(
+                f"{where}: the tasks' {key} = {_short(value)} has the wrong type: expected "
+                f"{expected} {hint}"
+            )
+    if "description" in manifest and not isinstance(manifest["description"], str):
+        manifest["description"] = str(manifest["description"])
+    return manifest
+
+
+def _short(value, width: int = 60) -> str:
+    text = repr(value)
+    return text if len(text) <= width else text[: width - 3] + "..."
+
+
 def collect_study(out_dir, *, include_timings: bool = True):
     """One ``xarray.Dataset`` of a whole study directory.
 
@@ -125,7 +180,7 @@ def collect_study(out_dir, *, include_timings: bool = True):
     from .. import __version__
 
     out = Path(out_dir)
-    manifest = store.read_manifest(out)
+    manifest = _check_manifest(store.read_manifest(out), out)
     tasks = sorted(manifest["tasks"], key=lambda t: t["id"])
     if not tasks:
         raise ParameterError(f"study directory {str(out)!r} lists no tasks")

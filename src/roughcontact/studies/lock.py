@@ -9,6 +9,11 @@ when the holder's file descriptor is closed, which includes the process dying by
 holder's PID, host and start time) is only read to write a helpful message, never to
 decide anything.
 
+The lock file is opened without following a symbolic link (``O_NOFOLLOW``) and without
+truncation, and used only if it is a regular file with no other hard link: a study
+directory received from somebody else may hold a link named ``.roughcontact.lock`` to any
+file of the user's, which the run must not overwrite (:class:`UnsafePath`, naming it).
+
 Where ``fcntl`` is missing (Windows) or the file system refuses locks (some network
 file systems), the run goes on unlocked after a :class:`RuntimeWarning`.
 """
@@ -19,6 +24,7 @@ import contextlib
 import errno
 import os
 import socket
+import stat
 import time
 import warnings
 from pathlib import Path
@@ -30,7 +36,7 @@ try:
 except ImportError:  # pragma: no cover - Windows
     fcntl = None
 
-__all__ = ["LOCK_NAME", "DirectoryLocked", "directory_lock"]
+__all__ = ["LOCK_NAME", "DirectoryLocked", "UnsafePath", "directory_lock", "open_regular"]
 
 LOCK_NAME = ".roughcontact.lock"
 # errors of flock that mean "the file system cannot lock", not "somebody holds it"
@@ -41,12 +47,63 @@ class DirectoryLocked(ParameterError):
     """Another process is writing into the directory (it holds the lock)."""
 
 
-def _owner(path: Path) -> str:
-    """The holder's record as written by :func:`_claim`, or a placeholder."""
+class UnsafePath(ParameterError):
+    """A file of the study directory is a symbolic link, a hard link or not a regular file."""
+
+
+_NOFOLLOW = getattr(os, "O_NOFOLLOW", 0)
+_CLOEXEC = getattr(os, "O_CLOEXEC", 0)
+_NONBLOCK = getattr(os, "O_NONBLOCK", 0)  # a FIFO planted under the name must not block
+
+
+def open_regular(path, flags: int, mode: int = 0o644) -> int:
+    """``os.open`` that never follows a symbolic link and accepts only a regular file.
+
+    ``path``'s last component must not be a symbolic link (``O_NOFOLLOW``; checked with
+    ``lstat`` too where the flag is missing); the opened file must be a regular file with
+    one link (a hard link would let a write change a file elsewhere). Returns the file
+    descriptor; raises :class:`UnsafePath` (one line, naming ``path``) otherwise.
+    """
+    path = Path(path)
+    if not _NOFOLLOW and path.is_symlink():  # pragma: no cover - Windows
+        raise _unsafe(path, "is a symbolic link")
     try:
-        text = path.read_text(encoding="utf-8").strip()
+        fd = os.open(path, flags | _NOFOLLOW | _CLOEXEC | _NONBLOCK, mode)
+    except OSError as err:
+        if err.errno == errno.ELOOP or path.is_symlink():
+            raise _unsafe(path, "is a symbolic link") from None
+        if err.errno in (errno.EISDIR, errno.ENXIO, errno.ENODEV):
+            raise _unsafe(path, "is not a regular file") from None
+        raise
+    try:
+        st = os.fstat(fd)
+        if not stat.S_ISREG(st.st_mode):
+            raise _unsafe(path, "is not a regular file")
+        if st.st_nlink > 1:
+            raise _unsafe(path, f"has {st.st_nlink} hard links (it is another file too)")
+        if _NONBLOCK:
+            os.set_blocking(fd, True)
+    except BaseException:
+        os.close(fd)
+        raise
+    return fd
+
+
+def _unsafe(path: Path, what: str) -> UnsafePath:
+    return UnsafePath(
+        f"{str(path)!r} {what}; refusing to use it (a study directory may contain only "
+        "regular files written by roughcontact: remove it if the directory is yours, "
+        "or choose another directory)"
+    )
+
+
+def _owner(fd: int) -> str:
+    """The holder's record as written by :func:`_claim` (read from the open lock file)."""
+    try:
+        text = os.pread(fd, 4096, 0).decode("utf-8", "replace").strip()
     except OSError:
         text = ""
+    text = " ".join(text.split())  # one line, whatever the file holds
     # empty while the holder is between taking the lock and writing its record
     return text or "PID unknown"
 
@@ -81,7 +138,7 @@ def _acquire(fd: int, directory: Path, path: Path, hint: str) -> bool:
     except BlockingIOError:
         raise DirectoryLocked(
             f"{str(directory)!r} is in use by another roughcontact run "
-            f"({_owner(path)}; lock file {path}); wait for it to finish or stop it, "
+            f"({_owner(fd)}; lock file {path}); wait for it to finish or stop it, "
             f"then {hint}"
         ) from None
     except OSError as err:
@@ -113,6 +170,9 @@ def directory_lock(directory, *, hint="run again with --resume to continue"):
     DirectoryLocked
         At once (no waiting) when another process, or another ``directory_lock`` of
         this process, holds the lock.
+    UnsafePath
+        The lock file is a symbolic link (never followed), has other hard links or is not
+        a regular file: it is left as it is.
     """
     directory = Path(directory)
     created = not directory.exists()
@@ -122,9 +182,10 @@ def directory_lock(directory, *, hint="run again with --resume to continue"):
         yield None
         return
     path = directory / LOCK_NAME
-    # opened without truncation: the holder's record must survive a failed attempt;
-    # Python's descriptors are not inherited by spawned worker processes (PEP 446)
-    fd = os.open(path, os.O_RDWR | os.O_CREAT, 0o644)
+    # opened without truncation: the holder's record must survive a failed attempt, and
+    # a link planted under the name is refused before anything is written; Python's
+    # descriptors are not inherited by spawned worker processes (PEP 446)
+    fd = open_regular(path, os.O_RDWR | os.O_CREAT, 0o644)
     try:
         held = _acquire(fd, directory, path, hint)
         if held:

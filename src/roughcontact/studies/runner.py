@@ -8,11 +8,13 @@ only where the driver runs.
 from __future__ import annotations
 
 import dataclasses
+import sys
 import time
 from dataclasses import dataclass
 from pathlib import Path
 
 from .._backend import check_device
+from .._signals import Terminated, exit_code, interruptible
 from .._validate import ParameterError
 from . import cluster, lock, store
 from .spec import StudySpec, load_study
@@ -117,7 +119,16 @@ def _drive(spec, out, todo, client, done, progress):
 
 
 def run_study(
-    study, out_dir, *, resume=False, scheduler=None, workers=None, progress=True, device=None
+    study,
+    out_dir,
+    *,
+    resume=False,
+    scheduler=None,
+    workers=None,
+    progress=True,
+    device=None,
+    security=None,
+    dashboard=False,
 ):
     """Run every task of a study and store each result as it finishes.
 
@@ -129,14 +140,22 @@ def run_study(
         Study directory (created). Without ``resume`` it must not hold a study yet.
         The run holds its lock (:mod:`.lock`) throughout: a second run into the same
         directory raises :class:`~.lock.DirectoryLocked` at once, while the lock of a
-        killed run is gone with its process and does not block ``resume``.
+        killed run is gone with its process and does not block ``resume``. No file is
+        written through a symbolic link found in the directory (:mod:`.store`); a link
+        (or hard link) at the lock file's name is refused (:class:`~.lock.UnsafePath`).
     resume : bool
-        Skip tasks whose file is finished (opens, has the completion marker and the
-        task's parameter hash); recompute missing, partial, corrupt and failed ones.
+        Continue the study that ``out_dir`` holds: skip tasks whose file is finished
+        (opens, has the completion marker and the task's parameter hash); recompute
+        missing, partial, corrupt and failed ones. The study must be the one the
+        directory was started with (the manifest's sha256 of the study file), else a
+        :class:`ParameterError` naming both, before anything is written.
     scheduler : None, str or distributed.Client
-        None: an in-process ``LocalCluster`` (processes, 1 thread each); an address
-        (``tcp://host:8786``): an existing cluster, reached within ``cluster.CONNECT_TIMEOUT``
-        seconds or a :class:`ParameterError`; ``"synchronous"``: in this process, no Dask.
+        None: an in-process Dask cluster (processes, 1 thread each, on 127.0.0.1) that
+        talks TLS with temporary credentials of this run, so that no other process can
+        connect to it, and opens no HTTP port (see ``dashboard``); an address
+        (``tcp://host:8786``, ``tls://host:8786``): an existing cluster, reached within
+        ``cluster.CONNECT_TIMEOUT`` seconds or a :class:`ParameterError`;
+        ``"synchronous"``: in this process, no Dask.
     workers : int, optional
         Worker processes of the local cluster (default: the usable CPU cores).
     progress : bool
@@ -145,6 +164,16 @@ def run_study(
         Where the workers compute (see :func:`roughcontact.to_device`); checked before
         any work. Not part of the task keys: a study resumed on another device skips
         the tasks already done.
+    security : distributed.security.Security, optional
+        TLS settings to reach a remote ``scheduler`` (``tls://...``), e.g.
+        ``cluster.tls_security(ca_file, cert, key)`` or
+        ``Security(tls_ca_file=..., tls_client_cert=..., tls_client_key=...,
+        require_encryption=True)``. Default: Dask's configuration
+        (``distributed.comm.tls.*``). Not for the local cluster, which makes its own.
+    dashboard : bool
+        Open the local cluster's Dask dashboard on ``cluster.DASHBOARD_ADDRESS``
+        (127.0.0.1:8787, or another port if taken; plain HTTP without authentication:
+        any local user can read it); its link goes to stderr. Default False: no HTTP port.
 
     Returns
     -------
@@ -154,6 +183,13 @@ def run_study(
     ------
     DirectoryLocked
         Another process is running a study in ``out_dir``.
+    KeyboardInterrupt
+        Ctrl-C, or SIGTERM (:class:`roughcontact._signals.Terminated`, while the run
+        holds the main thread's handler): raised once the cluster is shut down; every
+        task finished before it is in its file (``resume`` continues).
+    ParameterError
+        Bad input (naming the parameter), an unreachable scheduler, ``resume`` with
+        another study than the directory's, an unsafe file in ``out_dir``.
     """
     t0 = time.perf_counter()
     spec = study if isinstance(study, StudySpec) else load_study(study)
@@ -164,19 +200,65 @@ def run_study(
         isinstance(workers, bool) or not isinstance(workers, int) or workers < 1
     ):
         raise ParameterError(f"workers must be an integer >= 1, got {workers!r}")
+    cluster.check_options(scheduler, workers, security, dashboard)
     out = Path(out_dir)
     if out.exists() and not out.is_dir():
         raise ParameterError(f"output {str(out)!r} exists and is not a directory")
     # taken before anything is read or written, so that a second run fails at once
     # and never deletes the first one's files in progress
-    with lock.directory_lock(out, hint=_LOCKED_HINT):
-        return _run_locked(spec, out, resume, scheduler, workers, progress, t0)
+    # SIGTERM (a scheduler's end of job, kill) stops the run as Ctrl-C does: the cluster
+    # is shut down, the lock released, Terminated (a KeyboardInterrupt) raised
+    with interruptible(), lock.directory_lock(out, hint=_LOCKED_HINT):
+        return _run_locked(
+            spec, out, resume, (scheduler, workers, security, dashboard), progress, t0
+        )
+
+
+def _same_study(spec, out):
+    """Refuse to resume ``out`` with another study than the one it holds."""
+    manifest_path = out / store.MANIFEST
+    if not manifest_path.exists() and not manifest_path.is_symlink():
+        if store.existing_results(out):
+            raise ParameterError(
+                f"resume: {str(out)!r} holds task files but no {store.MANIFEST}, so it cannot "
+                f"be told whether they belong to study {spec.name!r} ({spec.source!r}); "
+                "choose another directory"
+            )
+        return  # nothing there yet: resume starts the study
+    manifest = store.read_manifest(out)
+    if manifest.get("sha256") == spec.sha256:
+        return
+    old = manifest.get("sha256")
+    old = old[:12] if isinstance(old, str) else repr(old)
+    raise ParameterError(
+        f"resume: {str(out)!r} holds study {manifest.get('name')!r} from "
+        f"{manifest.get('source')!r} (sha256 {old}...), not study {spec.name!r} from "
+        f"{spec.source!r} (sha256 {spec.sha256[:12]}...); resume it with the study file it "
+        f"was run with (a copy: {str(out / 'study.toml')!r}) or choose another directory"
+    )
+
+
+def _stopped(err, spec, out) -> KeyboardInterrupt:
+    """The interruption (Ctrl-C) or :class:`Terminated` (SIGTERM) to raise, saying what
+    is on disk: every task finished before it, in its file."""
+    finished = sum(1 for t in spec.tasks if store.task_path(out, t.id).is_file())
+    terminated = exit_code(err) == 143
+    why = "terminated (SIGTERM)" if terminated else "interrupted (Ctrl-C)"
+    message = (
+        f"{why}: {finished} of {len(spec.tasks)} tasks are finished in {str(out)!r} (the "
+        "cluster was shut down); continue with --resume (resume=True)"
+    )
+    return Terminated(message) if terminated else KeyboardInterrupt(message)
 
 
 def _pending(spec, out, resume):
     """``(done, todo)``: attributes of the finished tasks by id, the tasks left to run."""
     done, todo = {}, []
     for task in spec.tasks:
+        path = store.task_path(out, task.id)
+        if path.is_symlink() or (path.exists() and not path.is_file()):
+            todo.append(task)  # never read through a link: removed and recomputed
+            continue
         ok, info = store.check_task(out, task) if resume else (False, "")
         if ok:
             done[task.id] = info
@@ -185,19 +267,27 @@ def _pending(spec, out, resume):
     return done, todo
 
 
-def _run_locked(spec, out, resume, scheduler, workers, progress, t0):
-    """:func:`run_study` once the directory's lock is held."""
+def _run_locked(spec, out, resume, where, progress, t0):
+    """:func:`run_study` once the directory's lock is held (``where``: the cluster options)."""
+    scheduler, workers, security, dashboard = where
     if not resume and store.existing_results(out):
         raise ParameterError(
             f"{str(out)!r} already holds study results; pass --resume (resume=True) to "
             "continue that study, or choose another directory"
         )
+    if resume:
+        _same_study(spec, out)
     done, todo = _pending(spec, out, resume)
     client = local = None
     if todo and scheduler != "synchronous":
-        client, local = cluster.connect(scheduler, workers)  # an unreachable scheduler fails here
+        # an unreachable scheduler fails here
+        client, local = cluster.connect(scheduler, workers, security, dashboard)
+        if dashboard:
+            print(f"Dask dashboard: {client.dashboard_link}", file=sys.stderr, flush=True)
     try:
         unconverged, failed, analysis_errors = _drive(spec, out, todo, client, done, progress)
+    except KeyboardInterrupt as err:  # Ctrl-C or SIGTERM; the cluster closes below
+        raise _stopped(err, spec, out) from None
     finally:
         if local is not None:
             client.close()

@@ -10,7 +10,19 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from .._validate import ParameterError
+from .._validate import (
+    CONTACT_MODULUS,
+    FIT_MAX_AREA,
+    HURST,
+    MAX_ITER,
+    PIXEL_SIZE,
+    POISSON,
+    SEED,
+    TARGET_AREA,
+    TOL,
+    ParameterError,
+    Range,
+)
 
 __all__ = ["SCHEMA", "SWEEP_KEYS", "find", "make_interaction"]
 
@@ -40,13 +52,20 @@ def _k(kind, accepted="", test=None, default=None, sweep=True, is_list=False):
 
 
 _POS = ("> 0 and finite", lambda v: 0 < v < math.inf)
+
+
+def _shared(rng: Range):
+    """(accepted, test) of a range defined once in :mod:`roughcontact._validate`."""
+    return rng.accepted, rng.contains
+
+
 _NUM = ("finite", math.isfinite)
 SCHEMA = {
     "study": {"name": _k(str, sweep=False), "description": _k(str, sweep=False, default="")},
     "surface": {
         "size": _k(int, "an integer >= 8", lambda v: v >= 8),
-        "pixel_size": _k(float, *_POS, default=1.0),
-        "hurst": _k(float, "in (0, 1]", lambda v: 0 < v <= 1),
+        "pixel_size": _k(float, *_shared(PIXEL_SIZE), default=1.0),
+        "hurst": _k(float, *_shared(HURST)),
         "rms_slope": _k(float, *_POS),
         "rms_height": _k(float, *_POS),
         "short_cutoff": _k(float, ">= 2 * pixel_size", lambda v: 0 < v < math.inf),
@@ -54,16 +73,16 @@ SCHEMA = {
         "rolloff": _k(bool, default=True),
         "seeds": _k(
             int,
-            "a non-empty list of distinct integers >= 0",
-            lambda v: v >= 0,
+            f"a non-empty list of distinct integers {SEED.accepted.removeprefix('an integer ')}",
+            SEED.contains,
             sweep=False,
             is_list=True,
         ),
     },
     "substrate": {
-        "contact_modulus": _k(float, *_POS, default=1.0),
+        "contact_modulus": _k(float, *_shared(CONTACT_MODULUS), default=1.0),
         "thickness": _k(float, *_POS),
-        "poisson": _k(float, "in [0, 0.5]", lambda v: 0 <= v <= 0.5, default=0.5),
+        "poisson": _k(float, *_shared(POISSON), default=0.5),
         "base": _k(
             str,
             "'bonded' or 'frictionless'",
@@ -103,15 +122,15 @@ SCHEMA = {
         "retract": _k(bool, default=True, sweep=False),
     },
     "solver": {
-        "tol": _k(float, "in (0, 1)", lambda v: 0 < v < 1, 1e-8, False),
-        "max_iter": _k(int, "an integer >= 1", lambda v: v >= 1, 5000, False),
+        "tol": _k(float, *_shared(TOL), 1e-8, False),
+        "max_iter": _k(int, *_shared(MAX_ITER), 5000, False),
         "dtype": _k(
             str, "'float64' or 'float32'", lambda v: v in ("float64", "float32"), "float64", False
         ),
     },
     "analysis": {
-        "target_area": _k(float, "in (0, 1)", lambda v: 0 < v < 1, 0.01, False),
-        "fit_max_area": _k(float, "in (0, 1]", lambda v: 0 < v <= 1, 0.05, False),
+        "target_area": _k(float, *_shared(TARGET_AREA), 0.01, False),
+        "fit_max_area": _k(float, *_shared(FIT_MAX_AREA), 0.05, False),
         "branch": _k(
             str,
             "'approach' or 'retract'",
@@ -125,9 +144,21 @@ SCHEMA = {
         "hard_wall_reference": _k(bool, default=True, sweep=False),
     },
     "output": {
-        "fields_at": _k(int, "a list of step indices", None, (), False, True),
+        "fields_at": _k(
+            int,
+            "a list of step indices in [-steps, steps) (negative: from the end)",
+            None,
+            (),
+            False,
+            True,
+        ),
         "fields_at_area": _k(
-            float, "a list of A_rep/A0 in (0, 1)", lambda v: 0 < v < 1, (), False, True
+            float,
+            f"a list of A_rep/A0 {TARGET_AREA.accepted}",
+            TARGET_AREA.contains,
+            (),
+            False,
+            True,
         ),
         "fields": _k(
             str, "a list from " + ", ".join(FIELDS), lambda v: v in FIELDS, FIELDS, False, True

@@ -12,15 +12,24 @@ from __future__ import annotations
 import hashlib
 import itertools
 import json
+import math
 import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from .._validate import ParameterError
+from .._validate import MAX_PATH_STEPS, ParameterError, layer_thickness, step_indices
 from ..solvers._ops import DEFAULT_TOL
 from .schema import KINDS, LAW_KEYS, SCHEMA, SWEEP_KEYS, UNITS, find, make_interaction
 
-__all__ = ["StudySpec", "Task", "load_study", "make_interaction", "study_from_dict"]
+__all__ = [
+    "StudySpec",
+    "Task",
+    "approach_steps",
+    "load_study",
+    "make_interaction",
+    "path_steps",
+    "study_from_dict",
+]
 
 
 @dataclass(frozen=True)
@@ -66,6 +75,11 @@ def load_study(path) -> StudySpec:
         text = path.read_text(encoding="utf-8")
     except OSError as err:
         raise ParameterError(f"cannot read study file {str(path)!r}: {err.strerror}") from None
+    except UnicodeDecodeError as err:
+        raise ParameterError(
+            f"study file {path.name}: not a text file (byte {err.start} is not UTF-8); "
+            "expected a TOML study file"
+        ) from None
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as err:
@@ -148,6 +162,7 @@ def study_from_dict(data, *, source="<dict>", text=None, default_name="study") -
     tasks, width = [], max(5, len(str(len(combos) * len(seeds))))
     for combo, varying in combos:
         resolved = _resolve(combo, varying)
+        _tensile_loads(settings["path"], resolved, varying)
         for seed in seeds:
             params = {**resolved, "seed": seed}
             key = _digest({"params": params, "settings": settings})
@@ -209,6 +224,10 @@ def _settings(sections) -> dict:
             )
     out["output"]["fields"] = list(out["output"]["fields"])
     out["output"]["fields_at"] = list(out["output"]["fields_at"])
+    try:  # the range approach_retract checks, known here: before any work
+        step_indices("fields_at", out["output"]["fields_at"], path_steps(path))
+    except ParameterError as err:
+        _fail(f"[output] {err}")
     # settings enter every task's key: a study that does not use this later key keeps
     # the keys it had, so its directories written before it existed still --resume
     areas = list(out["output"].pop("fields_at_area"))
@@ -228,6 +247,44 @@ def _settings(sections) -> dict:
     return out
 
 
+def approach_steps(path: dict) -> int:
+    """Steps of the approach of validated ``[path]`` settings (lead-in included)."""
+    if path["values"] is not None:
+        n = len(path["values"])
+    elif path["num"] is not None:
+        n = path["num"]
+    else:  # as task.path_values counts them
+        span = abs(path["stop"] - path["start"]) / abs(path["step"])
+        if not span < MAX_PATH_STEPS:
+            _fail(
+                f"[path] start = {path['start']!r}, stop = {path['stop']!r}, step = "
+                f"{path['step']!r} gives more than {MAX_PATH_STEPS} steps: accepted at most "
+                f"{MAX_PATH_STEPS}; use a larger step"
+            )
+        n = int(math.floor(span + 1e-9)) + 1
+    return n + (len(path["lead_in"]) if path["control"] == "offset" else 0)
+
+
+def path_steps(path: dict) -> int:
+    """Steps of the whole path of validated ``[path]`` settings (retraction included)."""
+    n = approach_steps(path)
+    return n + (n - 1 if path["retract"] and n > 1 else 0)
+
+
+def _tensile_loads(path: dict, params: dict, varying: dict) -> None:
+    """A non-adhesive law carries no tensile (negative) load: fail before any work."""
+    if path["control"] != "load" or getattr(make_interaction(params), "adhesive", True):
+        return
+    given = path["values"] if path["values"] is not None else [path["start"], path["stop"]]
+    if min(given) < 0:
+        where = ", ".join(f"{k}={v!r}" for k, v in varying.items()) or "every task"
+        _fail(
+            f"[path] loads down to {min(given)!r} are out of range for law = "
+            f"{params['law']!r} ({where}): a non-adhesive law cannot carry a tensile "
+            "load; accepted loads >= 0, or an adhesive law"
+        )
+
+
 def _resolve(combo, varying) -> dict:
     """Fill defaults, check the cross-parameter ranges, derive the interaction's values."""
     p = {k: combo.get(k, find(k).default) for k in SWEEP_KEYS}
@@ -239,6 +296,11 @@ def _resolve(combo, varying) -> dict:
     if (p["rms_slope"] is None) == (p["rms_height"] is None):
         _fail(f"[surface] give exactly one of rms_slope, rms_height ({where})")
     a0, size = p["pixel_size"], p["size"] * p["pixel_size"]
+    if p["thickness"] is not None:  # relative to a0: the range Substrate checks
+        try:
+            layer_thickness("thickness", p["thickness"], a0)
+        except ParameterError as err:
+            _fail(f"[substrate] {err} ({where})")
     if p["short_cutoff"] < 2 * a0:
         _fail(
             f"[surface] short_cutoff = {p['short_cutoff']!r} is out of range: accepted >= "

@@ -9,11 +9,17 @@ Layout of a study directory::
     .task-00002.nc.<id>.tmp     a write in progress (removed when a run starts)
     .roughcontact.lock          the lock of the run writing here (:mod:`.lock`)
 
-A task file is written to a temporary name in the same directory, the completion marker
-attribute :data:`MARKER` is added last, the file is fsync'ed and then renamed over its
-final name (``os.replace``, atomic on POSIX and Windows), and the directory is fsync'ed.
+A task file is built in memory with the completion marker attribute :data:`MARKER`,
+written to a temporary name in the same directory, fsync'ed and then renamed over its
+final name (``os.replace``, atomic on POSIX and Windows), and the directory is fsync'ed
+(:func:`roughcontact._io.write_netcdf_atomic`; a full disk is one clear error).
 A file is taken as finished only if it opens, carries the marker and the task's
 parameter hash (``task_key``); anything else is removed and recomputed.
+
+Nothing is written through a symbolic link planted in the directory (it may come from
+somebody else): temporary files are created with ``O_EXCL | O_NOFOLLOW`` and renamed
+over the final name (which replaces a link there instead of following it), the manifest
+is read only from a regular file, and the lock file is refused if it is a link.
 """
 
 from __future__ import annotations
@@ -21,10 +27,10 @@ from __future__ import annotations
 import json
 import os
 import time
-import uuid
 from pathlib import Path
 
 from .._validate import ParameterError
+from .lock import UnsafePath, open_regular
 from .schema import FIELDS
 
 __all__ = [
@@ -55,44 +61,17 @@ def failure_path(out_dir, task_id: str) -> Path:
     return Path(out_dir) / f"task-{task_id}.failed.json"
 
 
-def _fsync_dir(directory: Path) -> None:
-    if os.name == "nt":  # pragma: no cover - directories cannot be opened on Windows
-        return
-    fd = os.open(directory, os.O_RDONLY)
-    try:
-        os.fsync(fd)
-    finally:
-        os.close(fd)
+def _write_bytes(final: Path, data: bytes) -> Path:
+    """Write ``data`` to ``final`` atomically (the one writer of :mod:`roughcontact._io`,
+    temporaries opened by :func:`.lock.open_regular`); a full disk is a ``WriteError``."""
+    from .._io import write_bytes_atomic
 
-
-def _fsync_file(path: Path) -> None:
-    fd = os.open(path, os.O_RDONLY)
-    try:
-        os.fsync(fd)
-    finally:
-        os.close(fd)
-
-
-def atomic_write(final: Path, write) -> Path:
-    """Call ``write(tmp_path)``, fsync, then ``os.replace`` the temporary file onto ``final``."""
-    final = Path(final)
-    tmp = final.with_name(f".{final.name}.{uuid.uuid4().hex[:12]}{_TMP}")
-    try:
-        write(tmp)
-        _fsync_file(tmp)
-        os.replace(tmp, final)
-    except BaseException:
-        tmp.unlink(missing_ok=True)
-        raise
-    _fsync_dir(final.parent)
-    return final
+    return write_bytes_atomic(final, data, opener=open_regular)
 
 
 def _write_json(final: Path, obj) -> Path:
-    def write(tmp):
-        tmp.write_text(json.dumps(obj, indent=1, sort_keys=True, allow_nan=True) + "\n")
-
-    return atomic_write(final, write)
+    text = json.dumps(obj, indent=1, sort_keys=True, allow_nan=True) + "\n"
+    return _write_bytes(final, text.encode("utf-8"))
 
 
 def _field_encoding(ds) -> dict:
@@ -105,15 +84,23 @@ def _field_encoding(ds) -> dict:
 
 
 def write_task(out_dir, task, ds) -> Path:
-    """Write a finished task atomically; the completion marker is the last thing written."""
-    import h5netcdf
+    """Write a finished task atomically (:func:`roughcontact._io.write_netcdf_atomic`).
 
-    def write(tmp):
-        ds.to_netcdf(tmp, engine="h5netcdf", encoding=_field_encoding(ds))
-        with h5netcdf.File(tmp, "a") as f:
-            f.attrs[MARKER] = time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())
+    The file is built in memory with the completion marker :data:`MARKER` and appears
+    under its name only complete (renamed over it once written and fsync'ed). A full
+    disk (or quota, I/O error) raises :class:`roughcontact._io.WriteError`, one line,
+    with every finished task file intact and no temporary file left.
+    """
+    from .._io import write_netcdf_atomic
 
-    path = atomic_write(task_path(out_dir, task.id), write)
+    marker = {MARKER: time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())}
+    path = write_netcdf_atomic(
+        ds,
+        task_path(out_dir, task.id),
+        encoding=_field_encoding(ds),
+        attrs=marker,
+        opener=open_regular,
+    )
     failure_path(out_dir, task.id).unlink(missing_ok=True)
     return path
 
@@ -130,7 +117,15 @@ def write_failure(out_dir, task, reason: str, traceback: str = "", **extra) -> P
         **extra,
     }
     task_path(out_dir, task.id).unlink(missing_ok=True)
-    return _write_json(failure_path(out_dir, task.id), record)
+    final = failure_path(out_dir, task.id)
+    try:
+        return _write_json(final, record)
+    except OSError as err:  # a full disk: the one-line WriteError of the task files
+        from .._io import as_write_error
+
+        if (converted := as_write_error(err, final)) is not err:
+            raise converted from err
+        raise
 
 
 def check_task(out_dir, task):
@@ -186,15 +181,24 @@ def write_manifest(out_dir, spec) -> Path:
         "axes": spec.axes,
         "tasks": [{"id": t.id, "key": t.key, "params": t.params} for t in spec.tasks],
     }
-    atomic_write(out / "study.toml", lambda tmp: tmp.write_text(spec.text, encoding="utf-8"))
+    # both through new temporary files: a link planted at either name is replaced
+    _write_bytes(out / "study.toml", spec.text.encode("utf-8"))
     return _write_json(out / MANIFEST, manifest)
 
 
 def read_manifest(out_dir) -> dict:
-    """The manifest of a study directory; a clear error if there is none."""
+    """The manifest of a study directory; a clear error if there is none.
+
+    A symbolic link (or anything but a regular file) named ``study.json`` is refused
+    (:class:`~.lock.UnsafePath`), not followed.
+    """
     path = Path(out_dir) / MANIFEST
     try:
-        return json.loads(path.read_text())
+        fd = open_regular(path, os.O_RDONLY)
+        with os.fdopen(fd, "rb") as f:
+            manifest = json.loads(f.read().decode("utf-8"))
+    except UnsafePath:
+        raise
     except FileNotFoundError:
         raise ParameterError(
             f"{str(out_dir)!r} is not a study directory (no {MANIFEST}; run "
@@ -202,3 +206,6 @@ def read_manifest(out_dir) -> dict:
         ) from None
     except (OSError, ValueError) as err:
         raise ParameterError(f"cannot read {path}: {err}") from None
+    if not isinstance(manifest, dict):
+        raise ParameterError(f"cannot read {path}: not a study manifest (a JSON object)")
+    return manifest

@@ -11,7 +11,7 @@ import math
 
 import numpy as np
 
-from .._validate import ParameterError, positive, shape2d
+from .._validate import PIXEL_SIZE, ParameterError, positive, shape2d
 from .._validate import finite as _finite
 
 __all__ = ["egg_box", "flat", "sinusoid", "sphere"]
@@ -89,7 +89,7 @@ def sphere(
     """
     nx, ny = shape2d("shape", shape)
     R = positive("radius", radius)
-    a = positive("pixel_size", pixel_size)
+    a = PIXEL_SIZE.check("pixel_size", pixel_size)
     if center is None:
         cx, cy = (nx // 2) * a, (ny // 2) * a
     else:
@@ -144,7 +144,7 @@ def sinusoid(
     nx, ny = shape2d("shape", shape)
     lam = positive("wavelength", wavelength)
     A = _finite("amplitude", amplitude)
-    a = positive("pixel_size", pixel_size)
+    a = PIXEL_SIZE.check("pixel_size", pixel_size)
     if axis not in (0, 1) or isinstance(axis, bool):
         raise ParameterError(f"axis must be 0 or 1, got {axis!r}")
     n = (nx, ny)[axis]
@@ -176,7 +176,7 @@ def egg_box(shape, wavelength: float, amplitude: float, *, pixel_size: float = 1
     nx, ny = shape2d("shape", shape)
     lam = positive("wavelength", wavelength)
     A = _finite("amplitude", amplitude)
-    a = positive("pixel_size", pixel_size)
+    a = PIXEL_SIZE.check("pixel_size", pixel_size)
     _check_divides("wavelength", lam, nx * a, 0)
     _check_divides("wavelength", lam, ny * a, 1)
     x, y = _coordinates(nx, ny, a)

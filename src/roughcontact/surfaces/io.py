@@ -14,11 +14,11 @@ from pathlib import Path
 import numpy as np
 
 from .._backend import to_numpy
-from .._validate import ParameterError, heights2d
+from .._validate import ParameterError, heights2d, real_array
 
 __all__ = ["load_heights", "save_heights"]
 
-_EXPECTED = "a 2D array (at least 2x2) of finite heights"
+_EXPECTED = "a 2D array (at least 2x2) of finite real heights with a finite rms"
 
 
 def load_heights(path) -> np.ndarray:
@@ -39,7 +39,9 @@ def load_heights(path) -> np.ndarray:
     ------
     ParameterError
         If the file is missing or unreadable, or does not hold a 2D array of finite
-        numbers; the message names the path and what was expected.
+        real numbers (boolean, complex, object and text arrays are rejected, never
+        converted; heights whose rms overflows too); the message names the path and
+        what was expected.
     """
     p = Path(os.fspath(path))
     if not p.is_file():
@@ -57,15 +59,15 @@ def load_heights(path) -> np.ndarray:
             f"path {str(p)!r}: could not read heights ({exc}); expected {_EXPECTED}"
         ) from None
     try:
-        data = np.asarray(data, dtype=np.float64)
-    except (TypeError, ValueError):
-        raise ParameterError(
-            f"path {str(p)!r}: data of dtype {data.dtype} is not numeric; expected {_EXPECTED}"
-        ) from None
-    try:
+        # the dtype first: bool, complex (imaginary part), object and text never convert
+        data = np.asarray(real_array("heights", data), dtype=np.float64)
         return np.array(heights2d("heights", data), dtype=np.float64)
     except ParameterError as exc:
         raise ParameterError(f"path {str(p)!r}: expected {_EXPECTED} ({exc})") from None
+    except (TypeError, ValueError, OverflowError):
+        raise ParameterError(
+            f"path {str(p)!r}: data of dtype {data.dtype} is not numeric; expected {_EXPECTED}"
+        ) from None
 
 
 def save_heights(path, heights) -> Path:

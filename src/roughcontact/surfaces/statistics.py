@@ -50,7 +50,7 @@ from dataclasses import asdict, dataclass
 import numpy as np
 
 from .._backend import array_namespace, rfft2, to_numpy
-from .._validate import ParameterError, heights2d, positive
+from .._validate import PIXEL_SIZE, ParameterError, heights2d
 
 __all__ = [
     "SurfaceStatistics",
@@ -171,11 +171,14 @@ def _fd_moments(h, pixel_size: float) -> tuple[float, float, float]:
 
 def _moments(heights, pixel_size, method):
     h = heights2d("heights", heights)
-    a = positive("pixel_size", pixel_size)
+    a = PIXEL_SIZE.check("pixel_size", pixel_size)
     _check_method(method)
-    if method == "spectral":
-        return _spectral_moments(h, a)
-    return _fd_moments(h, a)
+    # slopes and curvatures of representable heights may still overflow (tiny pixels):
+    # they come out inf, without warnings, and print as null in JSON
+    with np.errstate(over="ignore", invalid="ignore"):
+        if method == "spectral":
+            return _spectral_moments(h, a)
+        return _fd_moments(h, a)
 
 
 def statistics(heights, *, pixel_size: float = 1.0, method: str = "spectral") -> SurfaceStatistics:
@@ -187,7 +190,7 @@ def statistics(heights, *, pixel_size: float = 1.0, method: str = "spectral") ->
         Heights h [length] on a periodic grid, ``x = i*pixel_size``, ``y = j*pixel_size``.
         NumPy or any array-API array (e.g. CuPy).
     pixel_size : float, optional
-        Grid spacing a0 [length], > 0. Default 1.
+        Grid spacing a0 [length], in [1e-25, 1e25]. Default 1.
     method : {"spectral", "finite-difference"}, optional
         How derivatives are taken (see the module docstring, including the Nyquist
         convention of the spectral method).
@@ -278,7 +281,7 @@ def power_spectrum(
         Modes per bin.
     """
     h = heights2d("heights", heights)
-    a = positive("pixel_size", pixel_size)
+    a = PIXEL_SIZE.check("pixel_size", pixel_size)
     h = np.asarray(to_numpy(h), dtype=float)
     nx, ny = h.shape
     if nbins is None:
@@ -317,7 +320,7 @@ def short_cutoff_estimate(heights, *, pixel_size: float = 1.0, rtol: float = 1e-
     condition that the repulsive area spans many :math:`\lambda_s^2` (PNAS 2014).
     """
     h = to_numpy(heights2d("heights", heights))
-    a0 = positive("pixel_size", pixel_size)
+    a0 = PIXEL_SIZE.check("pixel_size", pixel_size)
     nx, ny = h.shape
     power = np.abs(np.fft.rfft2(h - h.mean())) ** 2
     q = np.hypot(

@@ -1,0 +1,198 @@
+"""Atomic file writes that survive a full disk: the old file or the new one, never half.
+
+One writer for every NetCDF file the package produces as results (``roughcontact path
+-o``, the task files of a study): :func:`write_netcdf_atomic` serialises the dataset to
+bytes in memory first (HDF5 never touches the disk, so a full disk cannot crash it in
+its ``close``: that used to end the process with a segfault, exit code 139), then
+:func:`write_bytes_atomic` writes the bytes with plain ``os.write`` to a temporary file
+in the target's directory, fsyncs it, renames it over the target (``os.replace``,
+atomic on POSIX and Windows) and fsyncs the directory. A failure on the way removes the
+temporary file and leaves the target as it was; the errors that mean the storage cannot
+take the data (no space left, quota exceeded, I/O error, file too large) are raised as
+one :class:`WriteError` whose message is a single line naming the file. SIGINT/SIGTERM
+during the write are held back until it is done (:func:`._signals.deferred`).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import errno
+import os
+import uuid
+from pathlib import Path
+
+from ._signals import deferred
+
+__all__ = [
+    "STORAGE_ERRNOS",
+    "WriteError",
+    "as_write_error",
+    "netcdf_bytes",
+    "temporary_name",
+    "write_bytes_atomic",
+    "write_netcdf_atomic",
+]
+
+#: errno values that mean "the storage cannot take these bytes", with their wording
+STORAGE_ERRNOS = {
+    errno.ENOSPC: "no space left writing",
+    errno.EDQUOT: "disk quota exceeded writing",
+    errno.EIO: "I/O error writing",
+    errno.EFBIG: "file too large writing",
+}
+TMP_SUFFIX = ".tmp"
+
+
+class WriteError(OSError):
+    """A result file could not be written: no space left, quota, I/O error, too large.
+
+    The file named (``filename``) is unchanged and no temporary file is left; ``str()``
+    is one line: ``no space left writing FILE ([Errno 28] No space left on device);
+    FILE was left as it was``.
+    """
+
+    def __str__(self) -> str:
+        return str(self.strerror)
+
+
+def as_write_error(err: OSError, path) -> OSError:
+    """``err`` as a :class:`WriteError` naming ``path`` when the storage could not take the
+    data (an errno of :data:`STORAGE_ERRNOS`); any other error comes back as it is."""
+    if isinstance(err, WriteError) or err.errno not in STORAGE_ERRNOS:
+        return err
+    what = STORAGE_ERRNOS[err.errno]
+    cause = f"[Errno {err.errno}] {err.strerror or os.strerror(err.errno)}"
+    message = f"{what} {path} ({cause}); {path} was left as it was, no temporary file remains"
+    return WriteError(err.errno, message, str(path))
+
+
+def temporary_name(path) -> Path:
+    """A fresh temporary name next to ``path``: ``.NAME.<random>.tmp`` (hidden)."""
+    path = Path(path)
+    return path.with_name(f".{path.name}.{uuid.uuid4().hex[:12]}{TMP_SUFFIX}")
+
+
+def _write_all(fd: int, data) -> None:
+    view = memoryview(data).cast("B")
+    while view.nbytes:
+        written = os.write(fd, view)
+        if written <= 0:  # pragma: no cover - os.write raises rather than write nothing
+            raise OSError(errno.EIO, os.strerror(errno.EIO))
+        view = view[written:]
+
+
+def _fsync_dir(directory: Path) -> None:
+    """Make a rename in ``directory`` durable (best effort: the file is in place already)."""
+    if os.name == "nt":  # pragma: no cover - directories cannot be opened on Windows
+        return
+    try:
+        fd = os.open(directory, os.O_RDONLY)
+    except OSError:
+        return
+    try:
+        os.fsync(fd)
+    except OSError:
+        pass
+    finally:
+        os.close(fd)
+
+
+def write_bytes_atomic(path, data, *, opener=None) -> Path:
+    """Write ``data`` (bytes-like) to ``path`` atomically and durably; return the path.
+
+    The temporary file is new (``O_EXCL``, never through a symbolic link); a link at
+    ``path`` is replaced, not followed. ``opener(path, flags, mode) -> fd`` replaces
+    ``os.open`` for it (e.g. :func:`roughcontact.studies.lock.open_regular`). Raises
+    :class:`WriteError` when the storage cannot take the bytes (see the module
+    docstring) and any other :class:`OSError` as it is (permission denied, missing
+    directory, ...), in both cases with ``path`` unchanged and no temporary file left.
+    """
+    final = Path(path)
+    tmp = temporary_name(final)
+    flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL
+    flags |= getattr(os, "O_BINARY", 0) | getattr(os, "O_NOFOLLOW", 0) | getattr(os, "O_CLOEXEC", 0)
+    with deferred():  # a signal now would only throw away bytes already computed
+        try:
+            fd = (opener or os.open)(tmp, flags, 0o666)
+            try:
+                _write_all(fd, data)
+                os.fsync(fd)
+                written = os.fstat(fd)
+            finally:
+                os.close(fd)
+            now = os.lstat(tmp)
+            if (now.st_dev, now.st_ino) != (written.st_dev, written.st_ino):
+                raise OSError(f"{tmp} is no longer the temporary file written; not used")
+            os.replace(tmp, final)
+        except OSError as err:
+            _remove(tmp)
+            if (converted := as_write_error(err, final)) is not err:
+                raise converted from err
+            raise
+        except BaseException:
+            _remove(tmp)
+            raise
+    _fsync_dir(final.parent)
+    return final
+
+
+def _remove(path: Path) -> None:
+    try:
+        path.unlink(missing_ok=True)
+    except OSError:  # pragma: no cover - nothing more can be done about it
+        pass
+
+
+def netcdf_bytes(ds, *, encoding=None, attrs=None):
+    """``ds`` as NetCDF-4 bytes (h5netcdf engine), built in memory; ``attrs`` are added to
+    a shallow copy's global attributes (``ds`` itself is not changed)."""
+    if attrs:
+        ds = ds.copy(deep=False)
+        ds.attrs.update(attrs)
+    with _local_scheduler():
+        try:
+            return ds.to_netcdf(engine="h5netcdf", encoding=encoding)
+        except ValueError as err:  # xarray < 2025: in-memory bytes only through scipy
+            if "engine" not in str(err):
+                raise
+        return _h5netcdf_in_memory(ds, encoding)
+
+
+def _local_scheduler():
+    """Dask's synchronous scheduler for the write. With a ``distributed.Client`` as the
+    default (a study's driver), xarray would take a cluster-wide lock named after the
+    target, which for an in-memory target fails ("Semaphore or Lock ... not known")."""
+    try:
+        import dask
+    except ImportError:  # pragma: no cover - dask is a dependency
+        return contextlib.nullcontext()
+    return dask.config.set(scheduler="synchronous")
+
+
+def _h5netcdf_in_memory(ds, encoding):
+    """The same bytes through h5netcdf on a BytesIO (what newer xarray does itself)."""
+    import io
+
+    import h5netcdf
+    from xarray.backends import H5NetCDFStore
+
+    buffer = io.BytesIO()
+    store = H5NetCDFStore(h5netcdf.File(buffer, "w"), mode="w")
+    try:
+        ds.dump_to_store(store, encoding=encoding)
+    finally:
+        store.close()
+    return buffer.getbuffer()
+
+
+def write_netcdf_atomic(ds, path, *, encoding=None, attrs=None, opener=None) -> Path:
+    """Write ``ds`` to ``path`` as NetCDF-4 (h5netcdf), atomically; see the module docstring.
+
+    ``encoding`` as for ``Dataset.to_netcdf``; ``attrs`` are added to the file's global
+    attributes (not to ``ds``); ``opener`` as for :func:`write_bytes_atomic`. Raises
+    :class:`WriteError` on a full disk, quota or I/O error, with ``path`` unchanged and
+    no temporary file left.
+    """
+    with deferred():  # serialising too: a finished result is not thrown away half-saved
+        data = netcdf_bytes(ds, encoding=encoding, attrs=attrs)
+        return write_bytes_atomic(path, data, opener=opener)
