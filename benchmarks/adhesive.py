@@ -1,4 +1,4 @@
-"""Adhesive benchmark: a warm-started approach against Adhesion and tamaas (SPEC §5).
+"""Adhesive benchmark: a warm-started approach against Adhesion and tamaas (benchmarks/README.md).
 
 One self-affine surface per size (H = 0.8, h'rms = 0.1, lambda_s = 8, lambda_L = n/2,
 fixed seed) on a periodic elastic half-space (E* = 1, a0 = 1), with the paper's smoothed
@@ -112,7 +112,7 @@ def approach_offsets(h: np.ndarray, steps: int, end_load: float) -> dict:
 
 
 def approach_state(n: int, la: float, seed: int, steps: int, tol: float):
-    """The SPEC approach's first ``steps`` steps, each warm-started from the last.
+    """The benchmark approach's first ``steps`` steps, each warm-started from the last.
 
     Returns ``(h, law, substrate, offsets, state)``: the surface, potential, substrate,
     all 10 offsets, and the state after step ``steps`` (None for 0). Raises if a step
@@ -573,7 +573,7 @@ def run(args, log=print) -> dict:
 
 
 def targets(summary, log=print) -> dict:
-    """SPEC targets: >= 20x Adhesion per step; iterations(max n) <= 1.5 x iterations(256)."""
+    """Targets: >= 20x Adhesion per step; iterations(max n) <= 1.5 x iterations(256)."""
     out = {}
     ours = [r for r in summary if r["code"] == "roughcontact"]
     for la in sorted({r["adhesion_length"] for r in ours}):

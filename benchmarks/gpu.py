@@ -7,7 +7,7 @@ h'rms = 0.1, lambda_s = 8, lambda_L = n/2, fixed seed; E* = a0 = 1):
   of an n x n float array on the device, synchronised -- the floor of one iteration;
 * ``hardwall``: the Polonsky-Keer solve at mean pressure ``--load`` (default 1e-3 E*),
   cold start; time, iterations, ms per iteration and that divided by the FFT pair
-  (SPEC target <= 2);
+  (target <= 2);
 * ``adhesive``: one displacement-controlled state of the paper's potential
   (``rc.SmoothLJ93.from_adhesion_length(--adhesion-length)``) at the offset where the
   hard wall carries ``--end-load``, cold start; the same columns;

@@ -1,4 +1,4 @@
-"""Hard-wall benchmark: roughcontact against tamaas and ContactMechanics (SPEC §5).
+"""Hard-wall benchmark: roughcontact against tamaas and ContactMechanics (benchmarks/README.md).
 
 One self-affine surface per size (H = 0.8, h'rms = 0.1, lambda_s = 8, lambda_L = n/2,
 fixed seed), pushed onto a periodic elastic half-space (E* = 1, a0 = 1) at a mean
@@ -77,7 +77,7 @@ def machine_meta() -> dict:
 
 
 def surface(n: int, seed: int) -> np.ndarray:
-    """The SPEC §5 surface in roughcontact's convention (summits = maxima of h)."""
+    """The benchmark surface, roughcontact's convention (summits = maxima of h)."""
     import roughcontact as rc
 
     return rc.self_affine(

@@ -1,4 +1,4 @@
-"""Spectrum of the smooth solver's preconditioned Hessian at the end of the SPEC §5 approach.
+"""Spectrum of the smooth solver's preconditioned Hessian at the end of the benchmark approach.
 
 For each size and ℓa: the approach of ``adhesive.py`` (same surface, potential and
 offsets, each step warm-started, tol 1e-8), then at its last state the extreme

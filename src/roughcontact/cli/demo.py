@@ -1,6 +1,6 @@
 """The main job on built-in defaults: a non-adhesive load path on a self-affine surface.
 
-Generates the SPEC's default surface (H = 0.8, h'rms = 0.1, λs = 8 a0, λL = L/2),
+Generates the benchmarks' default surface (H = 0.8, h'rms = 0.1, λs = 8 a0, λL = L/2),
 pushes it onto an elastic half-space (E* = 1) at increasing loads under load control,
 each state warm-started from the last, and reports A_rep/A0 against N/A0 and κ_rep at
 1 % repulsive area, from the site count and from the perimeter-corrected area (Pastewka &

@@ -1,7 +1,7 @@
 r"""Periodic elastic substrate: deflection from pressure and back, elastic energy.
 
 The substrate is flat and undeformed at z = 0; its deflection ``w`` is positive into
-the substrate and pressure ``p`` is positive when compressive (SPEC §1). Both are
+the substrate and pressure ``p`` is positive when compressive (the README's conventions). Both are
 periodic on an ``nx × ny`` grid of spacing ``pixel_size``; in Fourier space
 :math:`\tilde w(\mathbf q) = \tilde p(\mathbf q)/k(q)` with :math:`k` from
 :mod:`roughcontact.elastic.stiffness`.

@@ -9,7 +9,7 @@ A law depends on the local gap ``g`` only and is evaluated per unit area:
 * ``cutoff`` -- gap beyond which V = 0 exactly (``inf`` for unbounded laws);
 * ``hard_core`` -- True if the law is only defined for g >= 0 and the non-penetration
   constraint g >= 0 is enforced by the solver (bound-constrained minimisation); the
-  solver then also decides which contact sites are repulsive (SPEC §1: the site's net
+  solver then also decides which contact sites are repulsive (the README's model: the site's net
   force pushes the surfaces apart).
 """
 

@@ -1,6 +1,6 @@
 r"""The paper's interaction: a 9-3 Lennard-Jones wall smoothly truncated by a quartic.
 
-Pastewka & Robbins, PNAS 111, 3298 (2014), Methods; SPEC §1. With the equilibrium
+Pastewka & Robbins, PNAS 111, 3298 (2014), Methods. With the equilibrium
 distance :math:`a_0`, the stiffness :math:`k = V''(a_0)` and the range :math:`\Delta r`,
 and :math:`x = (g - a_0)/\Delta r`:
 
@@ -220,7 +220,7 @@ class SmoothLJ93:
         out[core] = sign * d
 
     def classify(self, gap):
-        """(repulsive, attractive) masks: g < a0, and a0 < g < a0 + Δr (SPEC §1)."""
+        """(repulsive, attractive) masks: g < a0, and a0 < g < a0 + Δr (README: 'The model')."""
         g = as_gap(gap)[1]
         a0 = self.equilibrium_distance
         return g < a0, (g > a0) & (g < a0 + self.range)

@@ -192,7 +192,7 @@ def bracketed_root(f, a, f_a, b, f_b, close_enough, max_eval: int):
     ``x`` with ``close_enough(f(x))``, or after ``max_eval`` evaluations. Returns
     ``(x, evaluations)``, ``x`` the last point evaluated (``b`` if none was).
 
-    In the smooth solver's line search (SPEC §5 approach, ℓa = 0.05, 256²) this took 2.9
+    In the smooth solver's line search (benchmark approach, ℓa = 0.05, 256²) this took 2.9
     evaluations on average where Illinois' regula falsi took 3.9, and at most 15 where
     that took up to 55 (steps into the 9-3 core, where |phi'| reaches 1e15 |phi'(0)|).
     """
@@ -228,7 +228,7 @@ POINT_CORRECTIONS = 2
 #: this fraction of the contact set, the conjugate directions are kept (the new sites
 #: start with none), as they are when sites leave; more restart them. Restarting on every
 #: join made the late iterations steepest descent whenever a site or two joined each time
-#: (SPEC §5 surface: 82 → 46 iterations at 2048², 34 → 29 at 512²; 1 % was the best of
+#: (benchmark surface: 82 → 46 iterations at 2048², 34 → 29 at 512²; 1 % was the best of
 #: 0-100 % over 1008 small cases, none of which fails to converge).
 JOINING_KEEPS_DIRECTIONS = 0.01
 

@@ -22,7 +22,7 @@ substrate's stiffness, the inverse of ``G`` on the whole grid, ``P_c`` the restr
 Vollebregt (J. Comput. Phys. 257, 333 (2014)). The condition number of ``G`` on a contact
 patch of radius ``R`` grows like ``R`` (its uniform mode is soft, its pixel modes stiff);
 ``P_c K P_c`` inverts it up to boundary effects, so the iteration count grows far less
-with the grid (SPEC §5 surface at 1e-3 E*: 96 → 33 iterations at 1024², 329 → 46 at
+with the grid (benchmark surface at 1e-3 E*: 96 → 33 iterations at 1024², 329 → 46 at
 2048²; ``benchmarks/hardwall.py``). Three details make the preconditioned steps as
 robust as the plain ones (without them, displacement control with a large contact set
 could stall or cycle until the iteration cap):
@@ -45,7 +45,7 @@ Nested iteration (default on, ``nested=True``): a cold solve on a grid of at lea
 grid coarsened 2×2 (block means of the heights, twice the pixel size, the same load or
 offset; recursively, to tolerance :data:`NESTED_TOL`), its pressure copied to each
 block's four sites. The fine grid then only corrects the contact set at its own scale
-(SPEC §5 surface: 33 → 20 iterations at 1024², 46 → 27 at 2048²; 1.3-2.1× faster to
+(benchmark surface: 33 → 20 iterations at 1024², 46 → 27 at 2048²; 1.3-2.1× faster to
 the solution at 256²-2048², the coarse solves included; ``benchmarks/hardwall.py``).
 
 Cost per iteration: one FFT convolution for the step (``G`` of the search direction),

@@ -32,7 +32,7 @@ STATE_SCALARS = (
 
 @dataclass(frozen=True)
 class ContactResult:
-    """One solved contact state (SPEC §1 conventions, lattice units unless given).
+    """One solved contact state (the README's conventions, lattice units unless given).
 
     Fields
     ------

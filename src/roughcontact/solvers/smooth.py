@@ -19,7 +19,7 @@ Hessian :math:`H = K + \mathrm{diag}\,V''(g)`:
 With the Green's function alone, the largest eigenvalue of the preconditioned Hessian is
 :math:`\approx 1 + V'' R / E^*` for a contact patch of radius ``R`` (the compliance of a
 large patch is far above that of its sites' springs), so it grows with the patch size
-and hence with the grid (at the last state of the SPEC §5 approach, 256² / 512² / 1024²:
+and hence with the grid (at the last state of the benchmark approach, 256² / 512² / 1024²:
 18.7 / 35.2 / 55.1 for ℓa = 0.005, 31 / 70 / 121 for ℓa = 0.05). The block preconditioner
 cuts it to 3.3-6.0, with the smallest eigenvalue almost unchanged, which halves the
 iterations at 512² and 1024² (``benchmarks/spectrum.py``, ``benchmarks/adhesive.py``).
@@ -65,7 +65,7 @@ every full-grid update writes into arrays allocated once per solve (:mod:`._inpl
 
 Convergence measure (``residual``): the largest force imbalance per unit area,
 ``max |K w - p_int(g)|`` (excluding the uniform mode when it is rigid), divided by the
-contact modulus. Everything else in SPEC §1 conventions.
+contact modulus. Everything else in the conventions of the README ('The model').
 """
 
 from __future__ import annotations
@@ -106,7 +106,7 @@ STIFF_FRACTION = 0.1
 
 #: The line search stops at |phi'(alpha)| <= LINE_SEARCH_RTOL |phi'(0)|: the strong Wolfe
 #: curvature condition, whose c2 = 0.1 Nocedal & Wright (Numerical Optimization, 2nd ed.,
-#: §5.2) suggest for nonlinear CG. 1e-3 to 0.1 took the same iterations (SPEC §5 approach,
+#: §5.2) suggest for nonlinear CG. 1e-3 to 0.1 took the same iterations (benchmark approach,
 #: 256²-1024², within 2 %) at 2.9 -> 2.1 evaluations per line search (ℓa = 0.05) and
 #: 1.7 -> 1.1 (ℓa = 0.005) from 1e-3 to this; 0.2 changed the paths (+12 % at ℓa = 0.05).
 LINE_SEARCH_RTOL = 0.05

@@ -1,6 +1,6 @@
 """Deterministic reference geometries on a periodic grid.
 
-Convention (SPEC section 1): the rigid surface sits at ``z = d - h``, so larger ``h`` is
+Convention (the README's 'The model'): the rigid surface sits at ``z = d - h``, so larger ``h`` is
 closer to the substrate and summits are maxima of ``h``. Grid index ``i`` along axis 0
 is ``x = i * pixel_size``; ``j`` along axis 1 is ``y = j * pixel_size``.
 """

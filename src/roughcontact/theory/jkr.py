@@ -3,7 +3,7 @@ r"""JKR and DMT theories: an adhesive rigid sphere on an elastic half-space.
 A paraboloid of radius ``R`` (the small-slope sphere of :mod:`.hertz`) touches a
 half-space of contact modulus ``E* = E / (1 - nu^2)``; the surfaces adhere with work of
 adhesion ``w`` (energy per area, i.e. pressure × length). Loads ``N`` are positive when
-they push the bodies together (SPEC §1), so adhesion shows up as negative (tensile)
+they push the bodies together (the README's conventions), so adhesion shows up as negative (tensile)
 loads; *pull-off forces* are reported as positive magnitudes. ``a`` is the contact
 radius and ``delta`` the rigid-body approach (indentation), positive into the substrate.
 
