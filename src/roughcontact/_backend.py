@@ -17,7 +17,7 @@ import array_api_compat
 import numpy as np
 from array_api_compat import device as array_device
 
-from ._validate import ParameterError
+from .errors import ParameterError
 
 __all__ = [
     "DTYPES",

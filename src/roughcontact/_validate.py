@@ -14,9 +14,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-
-class ParameterError(ValueError):
-    """A parameter is outside its accepted range; the message names both."""
+from ._backend import array_namespace, is_numpy_array
+from .errors import ParameterError
 
 
 def _num(v) -> str:
@@ -300,8 +299,6 @@ def _dtype_kind(x) -> str:
     try:
         return np.dtype(x.dtype).kind
     except TypeError:
-        from ._backend import array_namespace
-
         xp = array_namespace(x)
         for kind, words in (("f", "real floating"), ("i", "integral"), ("c", "complex floating")):
             if xp.isdtype(x.dtype, words):
@@ -343,8 +340,6 @@ def heights2d(name: str, heights):
     Rejected: boolean, complex, object or text arrays, masked arrays, NaN or inf, and
     heights so large that their rms (a sum of squares) overflows.
     """
-    from ._backend import array_namespace, is_numpy_array
-
     heights = real_array(name, heights)
     if heights.ndim != 2:
         raise ParameterError(f"{name} must be a 2D array, got {heights.ndim} dimension(s)")

@@ -23,6 +23,8 @@ from .._validate import (
     click_check,
     json_safe,
 )
+from ..interactions.registry import make_law
+from ..interactions.registry import names as interaction_names
 
 EXIT_BAD_INPUT = 2
 EXIT_NOT_CONVERGED = 3
@@ -116,66 +118,23 @@ def _interaction_options(f):
     return f
 
 
-INTERACTIONS = ["hardwall", "lj93smooth", "lj93", "exponential", "dugdale"]
+INTERACTIONS = list(interaction_names())  # hardwall, lj93smooth, lj93, exponential, dugdale
 
 
 def _make_interaction(
     name, work, range_, stiffness, core_stiffness, modulus, pixel_size, adhesion_length=None
 ):
-    from .. import interactions as it
-
-    def need(value, option):
-        if value is None:
-            if option == "--work-of-adhesion":
-                option += " (or --adhesion-length)"
-            raise ParameterError(f"--interaction {name} needs {option}")
-        return value
-
-    if adhesion_length is not None:
-        if work is not None:
-            raise ParameterError(
-                "give --adhesion-length (ℓa = w/E*) or --work-of-adhesion (w), not both"
-            )
-        if not (math.isfinite(adhesion_length) and adhesion_length > 0):
-            raise ParameterError(
-                f"--adhesion-length must be > 0 and finite (length), got {adhesion_length!r}"
-            )
-        if name == "hardwall":
-            raise ParameterError("--interaction hardwall takes no --adhesion-length")
-        work = adhesion_length * modulus  # ℓa = w/E*
-
-    unused = {"--stiffness": stiffness, "--core-stiffness": core_stiffness}
-    allowed = {"lj93smooth": ("--stiffness",), "exponential": ("--core-stiffness",)}
-    for option, value in unused.items():
-        if value is not None and option not in allowed.get(name, ()):
-            raise ParameterError(f"{option} does not apply to --interaction {name}")
-    if name == "hardwall":
-        if work is not None or range_ is not None:
-            raise ParameterError("--interaction hardwall takes no --work-of-adhesion/--range")
-        return it.HardWall()
-    if name == "lj93smooth":
-        return it.SmoothLJ93(
-            contact_modulus=modulus,
-            pixel_size=pixel_size,
-            stiffness=stiffness,
-            range=range_,
-            work_of_adhesion=work,
-        )
-    if name == "lj93":
-        if range_ is not None:
-            raise ParameterError("--range does not apply to --interaction lj93 (untruncated)")
-        return it.LennardJones93(
-            work_of_adhesion=need(work, "--work-of-adhesion"), equilibrium_distance=pixel_size
-        )
-    if name == "exponential":
-        return it.Exponential(
-            work_of_adhesion=need(work, "--work-of-adhesion"),
-            range=need(range_, "--range (decay length ρ)"),
-            core_stiffness=core_stiffness,
-        )
-    return it.MaugisDugdale(
-        work_of_adhesion=need(work, "--work-of-adhesion"),
-        range=need(range_, "--range (cohesive-zone width; σ0 = W/DR)"),
+    """The law of the ``--interaction`` options (checked and built by the registry)."""
+    return make_law(
+        name,
+        contact_modulus=modulus,
+        pixel_size=pixel_size,
+        spelling="cli",
+        adhesion_length=adhesion_length,
+        work_of_adhesion=work,
+        range=range_,
+        stiffness=stiffness,
+        core_stiffness=core_stiffness,
     )
 
 

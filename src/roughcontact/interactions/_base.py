@@ -11,21 +11,69 @@ A law depends on the local gap ``g`` only and is evaluated per unit area:
   constraint g >= 0 is enforced by the solver (bound-constrained minimisation); the
   solver then also decides which contact sites are repulsive (the README's model: the site's net
   force pushes the surfaces apart).
+
+:class:`Interaction` states this as a :class:`typing.Protocol`: it is the extension point
+of the package. A new law is a class that provides these members (deriving from
+:class:`GapLaw` gives ``energy``/``pressure``/``curvature``/``classify`` from one
+``_evaluate``); it is made available by name to the command line (``--interaction``) and
+to study files (``[interaction] law``) by one entry in
+:data:`roughcontact.interactions.registry.REGISTRY` (see that module).
 """
 
 from __future__ import annotations
+
+from typing import ClassVar, Protocol, runtime_checkable
 
 import numpy as np
 
 from .._backend import array_namespace
 
-__all__ = ["GapLaw"]
+__all__ = ["GapLaw", "Interaction"]
+
+
+@runtime_checkable
+class Interaction(Protocol):
+    """What an interaction law provides (the extension point; see the module docstring).
+
+    Required of every law:
+
+    * ``name`` -- its registry name (``"lj93smooth"``, ...);
+    * ``adhesive`` -- False for a law without attraction (then no tensile load exists);
+    * ``hard_core`` -- True if the solver enforces g >= 0 (bound-constrained minimiser);
+    * ``cutoff`` -- gap beyond which V = 0 exactly (``inf`` for unbounded laws);
+    * ``energy(g)``, ``pressure(g)``, ``curvature(g)`` -- V, -V', V'' per unit area;
+    * ``classify(g)`` -- the (repulsive, attractive) masks.
+
+    Optional, read by name where a law has them (the registry's
+    :func:`~roughcontact.interactions.registry.law_parameters` collects them):
+    ``work_of_adhesion`` (w), ``range`` (Δr, ρ or δ), ``stiffness`` (k = V''(a0)),
+    ``core_stiffness`` and ``equilibrium_distance`` (a0, the gap of the energy minimum).
+
+    :class:`~roughcontact.interactions.HardWall` is the one law that is a constraint, not
+    a potential: it provides ``name`` and ``adhesive`` only and the solvers treat it apart.
+    """
+
+    name: str
+    adhesive: bool
+    hard_core: bool
+
+    @property
+    def cutoff(self) -> float: ...
+
+    def energy(self, gap): ...
+
+    def pressure(self, gap): ...
+
+    def curvature(self, gap): ...
+
+    def classify(self, gap): ...
 
 
 class GapLaw:
     """Mixin: ``energy``/``pressure``/``curvature`` from one ``_evaluate(g) -> (V, V', V'')``."""
 
     hard_core: bool = False
+    adhesive: ClassVar[bool] = True
 
     def _evaluate(self, gap):  # pragma: no cover - abstract
         raise NotImplementedError

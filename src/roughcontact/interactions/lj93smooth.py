@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import ClassVar
 
 import numpy as np
 
@@ -72,6 +73,7 @@ class SmoothLJ93:
     epsilon: float
     sigma: float
     hard_core: bool = False
+    adhesive: ClassVar[bool] = True
 
     def __init__(
         self,

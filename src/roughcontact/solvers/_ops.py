@@ -15,6 +15,7 @@ from .._backend import (
     to_device,
 )
 from .._validate import ParameterError, heights2d, real_array, tolerance
+from .result import SolveStatus
 
 __all__ = [
     "DEFAULT_TOL",
@@ -368,16 +369,16 @@ class StallGuard:
 
 
 def stopping(done: bool, residual: float, stall, it: int, max_iter: int):
-    """Why an iteration loop stops here: ``(converged, message)``, or None to go on.
+    """Why an iteration loop stops here: ``(status, message)``, or None to go on.
 
     ``done``: the convergence test passed; ``stall``: the loop's :class:`StallGuard`.
     """
     if done:
-        return True, "converged"
+        return SolveStatus.CONVERGED, "converged"
     if (stalled := stall(residual)) is not None:
-        return False, stalled
+        return SolveStatus.STALLED, stalled
     if it >= max_iter:
-        return False, "iteration cap reached"
+        return SolveStatus.ITERATION_LIMIT, "iteration cap reached"
     return None
 
 

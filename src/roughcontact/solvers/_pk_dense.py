@@ -23,6 +23,7 @@ from ._ops import (
     stopping,
     total,
 )
+from .result import SolveStatus
 
 
 def _count(xp, mask) -> int:
@@ -51,7 +52,7 @@ class _RollKernel:
 def iterate_dense(p, pb, substrate):
     """Iterate from pressure ``p`` on the problem ``pb``; see :func:`._pk_sparse.iterate_sparse`.
 
-    Returns ``(p, deflection, iterations, residual, converged, message)`` (deflection
+    Returns ``(p, deflection, iterations, residual, status, message)`` (deflection
     None unless the last state is an exact evaluation).
     """
     xp = array_namespace(p)
@@ -67,14 +68,15 @@ def iterate_dense(p, pb, substrate):
     def fast(op, x):  # op in fast precision, the result back in the heights' precision
         return xp.astype(op(x), hf.dtype)
 
-    converged, message, residual, it = False, "iteration cap reached", math.inf, 0
+    status, message = SolveStatus.ITERATION_LIMIT, "iteration cap reached"
+    residual, it = math.inf, 0
     stall = StallGuard(dtype_name(hf))
     while True:
         n_c = _count(xp, c)
         if n_c == 0:  # displacement control lost all contact: restart from overlap
             overlap = s < -offset
             if not bool(xp.any(overlap)):
-                residual, converged, message = 0.0, True, "no contact"
+                residual, status, message = 0.0, SolveStatus.CONVERGED, "no contact"
                 break
             p = xp.where(overlap, -(s + offset) * pb.winkler, zero)
             s, c, exact, delta = conv(p) - hf, overlap, True, False
@@ -88,7 +90,7 @@ def iterate_dense(p, pb, substrate):
         viol = -float(xp.min(xp.where(out, gap, zero))) if any_out else 0.0
         residual = max(float(xp.max(xp.abs(g))), viol) / pb.scale
         if not math.isfinite(residual):  # a non-finite pressure shows in the gap
-            message = f"non-finite pressure at iteration {it}"
+            status, message = SolveStatus.NON_FINITE, f"non-finite pressure at iteration {it}"
             break
         if (update := reliable.check(residual, exact)) == "refresh":
             s, exact = conv(p) - hf, True
@@ -96,7 +98,7 @@ def iterate_dense(p, pb, substrate):
         if update == "restart":
             delta = False
         if (end := stopping(residual <= pb.tol, residual, stall, it, pb.max_iter)) is not None:
-            converged, message = end
+            status, message = end
             break
         it += 1
         reliable.step()
@@ -126,6 +128,7 @@ def iterate_dense(p, pb, substrate):
         denom = dot(r, t)
         tau = dot(g, t) / denom if denom > 0 else math.nan
         if not math.isfinite(tau):
+            status = SolveStatus.NON_FINITE
             message = f"breakdown at iteration {it}: non-finite step (check the inputs)"
             break
 
@@ -166,6 +169,6 @@ def iterate_dense(p, pb, substrate):
         # c is still p > 0: scaling by lam > 0 keeps the signs, and without a projection
         # p - tau t stays positive on c and zero off it
         if pb.callback is not None and pb.callback(it, residual):
-            message = "stopped by callback"
+            status, message = SolveStatus.CALLBACK, "stopped by callback"
             break
-    return p, (s + hf if exact else None), it, residual, converged, message
+    return p, (s + hf if exact else None), it, residual, status, message

@@ -22,6 +22,7 @@ from ._ops import (
     stopping,
 )
 from ._ops import dot as _dot
+from .result import SolveStatus
 
 __all__ = ["iterate_sparse"]
 
@@ -73,7 +74,8 @@ def iterate_sparse(p, pb, substrate):
     t_c = None
     delta, g_old = False, 1.0
     kind = StepKind(pb.precondition is not None)
-    converged, message, residual, it = False, "iteration cap reached", math.inf, 0
+    status, message = SolveStatus.ITERATION_LIMIT, "iteration cap reached"
+    residual, it = math.inf, 0
     stall = StallGuard(dtype_name(hf))
     exact = True  # s equals G p - h from a fresh convolution (not updated incrementally)
     reliable = ReliableUpdates(tol)
@@ -89,7 +91,7 @@ def iterate_sparse(p, pb, substrate):
         if idx.size == 0:  # displacement control lost all contact: restart from overlap
             ov = np.flatnonzero(s < -offset)
             if ov.size == 0:
-                residual, converged, message = 0.0, True, "no contact"
+                residual, status, message = 0.0, SolveStatus.CONVERGED, "no contact"
                 break
             p[ov] = -(s[ov] + offset) * winkler
             s, idx, exact, delta = _subtract_heights(conv(p, out=s), hf), ov, True, False
@@ -110,7 +112,7 @@ def iterate_sparse(p, pb, substrate):
         if update == "restart":
             delta = False
         if (end := stopping(residual <= tol, residual, stall, it, pb.max_iter)) is not None:
-            converged, message = end
+            status, message = end
             break
         it += 1
         reliable.step()
@@ -146,6 +148,7 @@ def iterate_sparse(p, pb, substrate):
         denom = _dot(r_c, t_c)
         tau = _dot(g_c, t_c) / denom if denom > 0 else math.nan
         if not math.isfinite(tau):
+            status = SolveStatus.NON_FINITE
             message = f"breakdown at iteration {it}: non-finite step (check the inputs)"
             break
 
@@ -192,10 +195,10 @@ def iterate_sparse(p, pb, substrate):
                     s *= lam
                     s += np.multiply(hf, lam - 1.0, out=work)
         if callback is not None and callback(it, residual):
-            message = "stopped by callback"
+            status, message = SolveStatus.CALLBACK, "stopped by callback"
             break
         if not math.isfinite(float(p[idx].sum())):
-            message = f"non-finite pressure at iteration {it}"
+            status, message = SolveStatus.NON_FINITE, f"non-finite pressure at iteration {it}"
             break
 
-    return p, (s + hf if exact else None), it, residual, converged, message
+    return p, (s + hf if exact else None), it, residual, status, message

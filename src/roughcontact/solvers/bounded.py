@@ -60,6 +60,7 @@ from ._ops import (
 )
 from ._ops import dot as _dot
 from .observables import make_result
+from .result import SolveStatus
 from .smooth import _line_minimum
 
 __all__ = ["minimize_energy_bounded", "project_feasible"]
@@ -176,7 +177,8 @@ def minimize_energy_bounded(
     e_cur = energy(w, kw)
     s = ks = z_old = None
     gz_old, active_old = 1.0, None
-    converged, message, residual, it, mu = False, "iteration cap reached", math.inf, 0, 0.0
+    status, message = SolveStatus.ITERATION_LIMIT, "iteration cap reached"
+    residual, it, mu = math.inf, 0, 0.0
     stall = StallGuard(dtype_name(h))
     reliable, exact = ReliableUpdates(tol), True  # exact: kw is K w from a fresh convolution
     free = xp.ones(n, dtype=xp.bool, device=array_device(h))
@@ -195,6 +197,7 @@ def minimize_energy_bounded(
         rr = xp.where(free, r - mu, 0.0)
         residual = float(xp.max(xp.abs(rr))) / es
         if not math.isfinite(residual):
+            status = SolveStatus.NON_FINITE
             message = f"non-finite state at iteration {it} (check inputs and the interaction)"
             break
         if (update := reliable.check(residual, exact)) == "refresh":
@@ -205,10 +208,10 @@ def minimize_energy_bounded(
             s = None  # the conjugate directions were built on a drifted gradient
         done = residual <= tol or not bool(xp.any(free))
         if (end := stopping(done, residual, stall, it, max_iter)) is not None:
-            converged, message = end
+            status, message = end
             break
         if callback is not None and it > 0 and callback(it, residual):
-            message = "stopped by callback"
+            status, message = SolveStatus.CALLBACK, "stopped by callback"
             break
         it += 1
         reliable.step()
@@ -232,6 +235,7 @@ def minimize_energy_bounded(
         ks = stiff_single(s)
         alpha = _line_minimum(interaction, gap, s, kw, ks, slope0)
         if not math.isfinite(alpha):
+            status = SolveStatus.LINE_SEARCH_FAILED
             message = f"line search failed at iteration {it}"
             break
         crossing = s < 0
@@ -252,6 +256,7 @@ def minimize_energy_bounded(
             alpha *= 0.5
         else:
             if alpha_max <= 0:
+                status = SolveStatus.LINE_SEARCH_FAILED
                 message = f"no descent along the projected direction at iteration {it}"
                 break
             w_try = xp.maximum(w + alpha_max * s, lower)  # largest feasible step
@@ -271,7 +276,7 @@ def minimize_energy_bounded(
         offset,
         it,
         residual,
-        converged,
+        status,
         message,
         tol,
         "bounded-cg",

@@ -24,6 +24,7 @@ import time
 
 from .._backend import array_namespace, dtype_name
 from ._ops import check_problem, false_position, illinois, lowest_hard_wall_offset
+from .result import SolveStatus
 
 __all__ = ["solve_at_load"]
 
@@ -67,10 +68,16 @@ def solve_at_load(
         return res
 
     def finish(res, converged, message):
+        # an inner solve that failed keeps its own status and message
+        if not res.converged:
+            status = res.status
+        else:
+            status = SolveStatus.CONVERGED if converged else SolveStatus.NO_STABLE_STATE
         return dataclasses.replace(
             res,
             iterations=total["it"],
             converged=bool(converged and res.converged),
+            status=status,
             message=message if res.converged else res.message,
             solve_seconds=time.perf_counter() - t0,
         )

@@ -6,7 +6,7 @@ import numpy as np
 
 from .._backend import to_numpy
 from ..analysis.contact_geometry import perimeter_edges
-from .result import ContactResult
+from .result import ContactResult, SolveStatus
 
 
 def make_result(
@@ -17,7 +17,7 @@ def make_result(
     offset,
     iterations,
     residual,
-    converged,
+    status,
     message,
     tol,
     solver,
@@ -26,6 +26,8 @@ def make_result(
     attractive=None,
 ):
     """Build the result record; ``repulsive``/``attractive`` masks default to p > 0 / none.
+
+    ``status`` (a :class:`SolveStatus`) gives ``converged``.
 
     Fields of any backend are copied to host NumPy here, once per solve (the record is
     an edge: files, analysis, plots).
@@ -58,7 +60,8 @@ def make_result(
         mean_gap=float(gap.mean(dtype=np.float64)),
         iterations=int(iterations),
         residual=float(residual),
-        converged=bool(converged),
+        converged=status is SolveStatus.CONVERGED,
+        status=status,
         message=message,
         solve_seconds=float(seconds),
         nominal_area=substrate.nominal_area,

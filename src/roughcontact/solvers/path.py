@@ -16,7 +16,7 @@ from .._backend import (
 )
 from .._validate import ParameterError, step_indices, step_list
 from ..analysis.contact_geometry import contact_patches
-from .result import STATE_SCALARS
+from .result import STATE_SCALARS, SolveStatus
 from .solve import solve
 
 __all__ = ["PathError", "PathInterrupted", "approach_retract"]
@@ -111,8 +111,9 @@ def approach_retract(
     xarray.Dataset
         Indexed by ``step``: offset, load, repulsive/attractive load and area, mean gap,
         perimeter, corrected_repulsive_area (Yastrebov et al. 2017), iterations,
-        residual, converged, solve_seconds, repulsive_patches (number of connected
-        repulsive patches, periodic), branch ("approach"/"retract"),
+        residual, converged, status (the :class:`SolveStatus` value), solve_seconds,
+        repulsive_patches (number of connected repulsive patches, periodic), branch
+        ("approach"/"retract"),
         jump; ``heights`` (dims ``x``, ``y``: the rigid surface's heights h, length,
         float64 on the host). Attrs: the provenance of :func:`provenance` (surface
         statistics, the substrate's contact_modulus, pixel_size, grid, thickness (inf:
@@ -169,10 +170,11 @@ def approach_retract(
                 heights, substrate, interaction, initial=previous, tol=tol,
                 max_iter=max_iter, dtype=dtype, **kwargs,
             )  # fmt: skip
-            if "non-finite" in res.message or not math.isfinite(res.load):
+            if res.status is SolveStatus.NON_FINITE or not math.isfinite(res.load):
                 why = f"step {step} ({control} = {value:g}): {res.message}"
                 raise PathError(why, dataset())
             row = {k: getattr(res, k) for k in STATE_SCALARS}
+            row["status"] = res.status.value
             row["repulsive_patches"] = int(contact_patches(res.pressure > 0)[1].size)
             if previous is None:
                 row["jump"] = False
@@ -332,6 +334,7 @@ def _dataset(rows, branch, fields, control, t0, attrs, heights):
     columns = (*STATE_SCALARS, "repulsive_patches", "jump")
     data = {k: ("step", np.array([r[k] for r in rows]) if n else np.zeros(0)) for k in columns}
     data["branch"] = ("step", np.array(branch[:n], dtype=str))
+    data["status"] = ("step", np.array([r["status"] for r in rows], dtype=str))
     ds = xr.Dataset(data, coords={"step": np.arange(n)})
     if fields:
         steps = sorted(fields)

@@ -100,6 +100,7 @@ from ._ops import (
 from ._pk_dense import iterate_dense
 from ._pk_sparse import iterate_sparse
 from .observables import make_result
+from .result import SolveStatus
 
 __all__ = ["polonsky_keer"]
 
@@ -230,16 +231,17 @@ def polonsky_keer(
     h_max = float(xp.max(hf))
     conv = compliance_operator(substrate)
 
-    def result(p, u, d, it, residual, converged, message):
+    def result(p, u, d, it, residual, status, message):
         return make_result(
             h, substrate, xp.reshape(p, h.shape), xp.reshape(u, h.shape), d, it, residual,
-            converged, message, tol, "polonsky-keer", time.perf_counter() - t_start,
+            status, message, tol, "polonsky-keer", time.perf_counter() - t_start,
         )  # fmt: skip
 
     if load == 0.0 or (offset is not None and substrate.rigid_mean and offset >= h_max):
         # no contact: nothing to solve (the rigid surface just touches or is apart)
         zero = xp.zeros_like(hf)
-        return result(zero, zero, h_max if offset is None else offset, 0, 0.0, True, "no contact")
+        d = h_max if offset is None else offset
+        return result(zero, zero, d, 0, 0.0, SolveStatus.CONVERGED, "no contact")
 
     if initial is None and nested:
         initial = _coarse_guess(h, substrate, load, offset, max_iter, precondition)
@@ -263,9 +265,9 @@ def polonsky_keer(
         callback=callback,
     )
     if is_numpy_array(h):
-        p, u, it, residual, converged, message = iterate_sparse(p, problem, substrate)
+        p, u, it, residual, status, message = iterate_sparse(p, problem, substrate)
     else:
-        p, u, it, residual, converged, message = iterate_dense(p, problem, substrate)
+        p, u, it, residual, status, message = iterate_dense(p, problem, substrate)
     if u is None:  # the last state was updated incrementally: evaluate it exactly
         u = conv(p)
     c = p > 0
@@ -273,7 +275,7 @@ def polonsky_keer(
         d = -float(xp.sum(xp.where(c, u - hf, 0.0))) / float(xp.sum(xp.astype(c, h.dtype)))
     else:
         d = offset if offset is not None else h_max
-    return result(p, u, d, it, residual, converged, message)
+    return result(p, u, d, it, residual, status, message)
 
 
 @dataclass(frozen=True)

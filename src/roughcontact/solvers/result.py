@@ -2,16 +2,42 @@
 
 from __future__ import annotations
 
+import enum
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from ..analysis.contact_geometry import AREA_CORRECTION_PER_EDGE
 
-__all__ = ["STATE_SCALARS", "ContactResult"]
+__all__ = ["STATE_SCALARS", "ContactResult", "SolveStatus"]
+
+
+class SolveStatus(enum.StrEnum):
+    """Why a solver stopped: the machine-readable twin of ``ContactResult.message``.
+
+    A ``str`` subclass (``enum.StrEnum``), so it is JSON-ready (``status.value``); branch
+    on it, never on the message text. ``converged`` is ``status is SolveStatus.CONVERGED``.
+    """
+
+    #: The convergence test passed (also: no contact, nothing to solve).
+    CONVERGED = "converged"
+    #: ``max_iter`` iterations without meeting ``tol``.
+    ITERATION_LIMIT = "iteration_limit"
+    #: Stuck at the rounding floor (float32, or float64 under deep compression).
+    STALLED = "stalled"
+    #: A non-finite pressure, state or step (check the inputs and the interaction).
+    NON_FINITE = "non_finite"
+    #: The callback returned True.
+    CALLBACK = "stopped_by_callback"
+    #: The line search found no finite minimum, or no descent along the projected direction.
+    LINE_SEARCH_FAILED = "line_search_failed"
+    #: Load control: no (stable) state carries the load (a jump of the load-offset curve,
+    #: beyond the pull-off force or full contact, or not bracketed).
+    NO_STABLE_STATE = "no_stable_state"
+
 
 #: The numbers describing one solved state: the path datasets' per-step variables and,
-#: with message, tol and solver, the keys of :meth:`ContactResult.summary`.
+#: with message, status, tol and solver, the keys of :meth:`ContactResult.summary`.
 STATE_SCALARS = (
     "offset",
     "load",
@@ -59,9 +85,12 @@ class ContactResult:
     residual : float
         Final value of the solver's convergence measure (see the solver's docs).
     converged : bool
-        Whether ``residual <= tol`` was reached within the iteration cap.
+        Whether ``residual <= tol`` was reached within the iteration cap
+        (``status is SolveStatus.CONVERGED``).
+    status : SolveStatus
+        Why the solver stopped, as an enum (str-valued): branch on this.
     message : str
-        Why the solver stopped.
+        Why the solver stopped, for people.
     solve_seconds : float
         Wall time of the solve (no imports, no set-up of the substrate).
     nominal_area, pixel_size : float
@@ -80,6 +109,7 @@ class ContactResult:
     iterations: int
     residual: float
     converged: bool
+    status: SolveStatus
     message: str
     solve_seconds: float
     nominal_area: float
@@ -89,6 +119,12 @@ class ContactResult:
     pressure: np.ndarray = field(repr=False)
     gap: np.ndarray = field(repr=False)
     deflection: np.ndarray = field(repr=False)
+
+    def __post_init__(self):
+        status = SolveStatus(self.status)
+        object.__setattr__(self, "status", status)
+        if bool(self.converged) != (status is SolveStatus.CONVERGED):
+            raise ValueError(f"converged={self.converged!r} contradicts status {status.value!r}")
 
     @property
     def total_load(self) -> float:
@@ -112,10 +148,12 @@ class ContactResult:
     def summary(self) -> dict:
         """Scalars only, JSON-ready (the keys of ``roughcontact contact --json``)."""
         out = {}
-        for k in (*STATE_SCALARS, "message", "tol", "solver"):
+        for k in (*STATE_SCALARS, "message", "status", "tol", "solver"):
             v = getattr(self, k)
             out[k] = (
-                v
+                v.value
+                if isinstance(v, SolveStatus)
+                else v
                 if isinstance(v, (str, bool))
                 else (int(v) if k in ("iterations", "perimeter_edges") else float(v))
             )

@@ -97,6 +97,7 @@ from ._ops import (
 )
 from ._ops import dot as _dot
 from .observables import make_result
+from .result import SolveStatus
 
 __all__ = ["minimize_energy"]
 
@@ -286,11 +287,13 @@ def minimize_energy(
     directions = False  # whether s, ks hold conjugate directions to build on
     s, ks, z, z_old = (xp.empty_like(gap) for _ in range(4))
     gz_old = 1.0
-    converged, message, residual, it = False, "iteration cap reached", math.inf, 0
+    status, message = SolveStatus.ITERATION_LIMIT, "iteration cap reached"
+    residual, it = math.inf, 0
     stall = FloorGuard(StallGuard(dtype_name(h)), dtype_name(h), lambda: _largest(p_near), es, tol)
     while True:
         residual = max(float(xp.max(gr)), -float(xp.min(gr))) / es
         if not math.isfinite(residual):
+            status = SolveStatus.NON_FINITE
             message = f"non-finite state at iteration {it} (check inputs and the interaction)"
             break
         if (update := reliable.check(residual, exact)) == "refresh":
@@ -301,10 +304,10 @@ def minimize_energy(
         if update == "restart":
             directions = False  # they were built on a drifted gradient
         if (end := stopping(residual <= tol, residual, stall, it, max_iter)) is not None:
-            converged, message = end
+            status, message = end
             break
         if callback is not None and it > 0 and callback(it, residual):
-            message = "stopped by callback"
+            status, message = SolveStatus.CALLBACK, "stopped by callback"
             break
         it += 1
         reliable.step()
@@ -346,6 +349,7 @@ def minimize_energy(
             elastic_slope=elastic_slope,
         )
         if not math.isfinite(alpha):
+            status = SolveStatus.LINE_SEARCH_FAILED
             message = f"line search failed at iteration {it}"
             break
         work.axpy(gap, alpha, s)
@@ -363,7 +367,7 @@ def minimize_energy(
         offset,
         it,
         residual,
-        converged,
+        status,
         message,
         tol,
         "preconditioned-cg",

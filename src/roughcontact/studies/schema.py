@@ -20,13 +20,17 @@ from .._validate import (
     SEED,
     TARGET_AREA,
     TOL,
-    ParameterError,
+    ParameterError,  # noqa: F401 (importable from here, as before)
     Range,
 )
+from ..interactions.registry import PARAMETERS, make_law
+from ..interactions.registry import names as law_names
 
 __all__ = ["SCHEMA", "SWEEP_KEYS", "find", "make_interaction"]
 
-LAWS = ("lj93smooth", "hardwall", "lj93", "exponential", "dugdale")
+DEFAULT_LAW = "lj93smooth"
+# the registry's laws, the default first (as the schema has always listed them)
+LAWS = (DEFAULT_LAW, *(n for n in law_names() if n != DEFAULT_LAW))
 FIELDS = ("pressure", "gap", "deflection")
 UNITS = {
     "offset": ("length", "rms_height", "bearing_area"),
@@ -91,7 +95,7 @@ SCHEMA = {
         ),
     },
     "interaction": {
-        "law": _k(str, "one of " + ", ".join(LAWS), lambda v: v in LAWS, default="lj93smooth"),
+        "law": _k(str, "one of " + ", ".join(LAWS), lambda v: v in LAWS, default=DEFAULT_LAW),
         "adhesion_length": _k(float, "> 0; law = 'hardwall' for no adhesion", _POS[1]),
         "work_of_adhesion": _k(float, *_POS),
         "range": _k(float, *_POS),
@@ -174,7 +178,7 @@ def find(key) -> _Key:
     return SCHEMA[_SECTION[key]][key]
 
 
-LAW_KEYS = ("adhesion_length", "work_of_adhesion", "range", "stiffness", "core_stiffness")
+LAW_KEYS = PARAMETERS  # adhesion_length, work_of_adhesion, range, stiffness, core_stiffness
 
 
 def make_interaction(p):
@@ -184,53 +188,14 @@ def make_interaction(p):
 
     ``lj93smooth`` takes ``adhesion_length`` (k = E*/(2 a0), Δr = √(24 a0 ℓa)) or any two
     of stiffness, range, work_of_adhesion; ``lj93`` a work of adhesion or ℓa;
-    ``exponential`` and ``dugdale`` ℓa (or w) and a range; ``hardwall`` none.
+    ``exponential`` and ``dugdale`` ℓa (or w) and a range; ``hardwall`` none. The checks
+    and the construction are the registry's (:func:`~roughcontact.interactions.registry.make_law`).
     """
-    from .. import interactions as it
-
-    law, es, a0 = p["law"], p["contact_modulus"], p["pixel_size"]
     src = p.get("law_inputs", p)  # the values as given; p holds the derived ones too
-    given = {k: src.get(k) for k in LAW_KEYS if src.get(k) is not None}
-    if "adhesion_length" in given and "work_of_adhesion" in given:
-        raise ParameterError("give adhesion_length or work_of_adhesion, not both")
-    w = (
-        given["adhesion_length"] * es
-        if "adhesion_length" in given
-        else given.get("work_of_adhesion")
+    return make_law(
+        p["law"],
+        contact_modulus=p["contact_modulus"],
+        pixel_size=p["pixel_size"],
+        spelling="study",
+        **{k: src.get(k) for k in LAW_KEYS},
     )
-    takes = {
-        "hardwall": (),
-        "lj93smooth": ("range", "stiffness"),
-        "lj93": (),
-        "exponential": ("range", "core_stiffness"),
-        "dugdale": ("range",),
-    }
-    extra = [k for k in given if k not in (*takes[law], "adhesion_length", "work_of_adhesion")]
-    if law == "hardwall" and given:
-        extra = list(given)
-    if extra:
-        raise ParameterError(f"{extra[0]} = {given[extra[0]]!r} does not apply to law = {law!r}")
-    if law == "hardwall":
-        return it.HardWall()
-    if law == "lj93smooth" and not given:
-        raise ParameterError(
-            "law = 'lj93smooth' needs adhesion_length (or any two of stiffness, range, "
-            "work_of_adhesion)"
-        )
-    if law == "lj93smooth":
-        return it.SmoothLJ93(
-            contact_modulus=es,
-            pixel_size=a0,
-            work_of_adhesion=w,
-            range=given.get("range"),
-            stiffness=given.get("stiffness"),
-        )
-    if w is None:
-        raise ParameterError(f"law = {law!r} needs adhesion_length (or work_of_adhesion)")
-    if law == "lj93":
-        return it.LennardJones93(work_of_adhesion=w, equilibrium_distance=a0)
-    if "range" not in given:
-        raise ParameterError(f"law = {law!r} needs range (> 0, length)")
-    if law == "exponential":
-        return it.Exponential(w, given["range"], given.get("core_stiffness"))
-    return it.MaugisDugdale(w, given["range"])

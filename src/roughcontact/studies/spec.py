@@ -18,6 +18,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from .._validate import MAX_PATH_STEPS, ParameterError, layer_thickness, step_indices
+from ..interactions.registry import law_parameters
 from ..solvers._ops import DEFAULT_TOL
 from .schema import KINDS, LAW_KEYS, SCHEMA, SWEEP_KEYS, UNITS, find, make_interaction
 
@@ -273,7 +274,7 @@ def path_steps(path: dict) -> int:
 
 def _tensile_loads(path: dict, params: dict, varying: dict) -> None:
     """A non-adhesive law carries no tensile (negative) load: fail before any work."""
-    if path["control"] != "load" or getattr(make_interaction(params), "adhesive", True):
+    if path["control"] != "load" or make_interaction(params).adhesive:
         return
     given = path["values"] if path["values"] is not None else [path["start"], path["stop"]]
     if min(given) < 0:
@@ -321,9 +322,9 @@ def _resolve(combo, varying) -> dict:
         law = make_interaction(p)
     except ParameterError as err:
         _fail(f"[interaction] {err} ({where})")
+    values = law_parameters(law)
     for key in ("work_of_adhesion", "range", "stiffness"):
-        value = getattr(law, key, None)
-        p[key] = float(value) if isinstance(value, float) else p[key]
+        p[key] = values.get(key, p[key])
     if p["work_of_adhesion"] is not None:
         p["adhesion_length"] = p["work_of_adhesion"] / p["contact_modulus"]
     return p
