@@ -169,10 +169,10 @@ def parse_blocks(text: str) -> list[Block]:
     return blocks
 
 
-def strip_comment(line: str) -> str:
-    """Drop a trailing shell comment: '#' at the start or after whitespace, outside quotes."""
+def _unquoted(text: str):
+    """Indices of the characters of ``text`` outside shell quotes and backslash escapes."""
     quote, escaped = None, False
-    for i, char in enumerate(line):
+    for i, char in enumerate(text):
         if escaped:
             escaped = False
         elif char == "\\" and quote != "'":
@@ -182,30 +182,25 @@ def strip_comment(line: str) -> str:
                 quote = None
         elif char in "'\"":
             quote = char
-        elif char == "#" and (i == 0 or line[i - 1].isspace()):
+        else:
+            yield i
+
+
+def strip_comment(line: str) -> str:
+    """Drop a trailing shell comment: '#' at the start or after whitespace, outside quotes."""
+    for i in _unquoted(line):
+        if line[i] == "#" and (i == 0 or line[i - 1].isspace()):
             return line[:i].rstrip()
     return line.rstrip()
 
 
 def split_and(command: str) -> list[str]:
     """Split a command at '&&' outside quotes."""
-    parts, quote, escaped, start, i = [], None, False, 0, 0
-    while i < len(command):
-        char = command[i]
-        if escaped:
-            escaped = False
-        elif char == "\\" and quote != "'":
-            escaped = True
-        elif quote:
-            if char == quote:
-                quote = None
-        elif char in "'\"":
-            quote = char
-        elif command.startswith("&&", i):
+    parts, start = [], 0
+    for i in _unquoted(command):
+        if i >= start and command.startswith("&&", i):
             parts.append(command[start:i].strip())
             start = i + 2
-            i += 1
-        i += 1
     parts.append(command[start:].strip())
     return parts
 
