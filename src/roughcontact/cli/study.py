@@ -136,3 +136,47 @@ def collect(out_dir, output, no_timings):
         f"{ds.attrs['tasks_failed']} failed, {ds.attrs['tasks_missing']} missing), "
         f"{ds.sizes['step']} steps -> {output}"
     )
+
+
+@study.command("report")
+@click.argument("source", metavar="DIR|COLLECTED.nc", type=click.Path(exists=True))
+@click.option(
+    "-o",
+    "--output",
+    "out_dir",
+    type=click.Path(file_okay=False),
+    required=True,
+    help="Report directory: README.md, claims.json, versions.json, data/, figures/.",
+)
+@click.option(
+    "--confidence",
+    type=float,
+    default=0.95,
+    show_default=True,
+    help="Level of the intervals over seeds, in (0, 1).",
+)
+@click.option("--dpi", type=int, default=120, show_default=True, help="Figure resolution.")
+def report(source, out_dir, confidence, dpi):
+    """Check the paper's claims on a study: data, figures and a Markdown report.
+
+    SOURCE is a study directory or its collected NetCDF file. Writes into the -o
+    directory only: data/collected.nc and data/{tasks,steps,parameter_sets}.csv (per task
+    and per step scalars, no field maps), claims.json (every number of the report),
+    versions.json, figures/fig2-4 (PNG) and README.md, which takes the claims of
+    Pastewka & Robbins (2014) one by one and puts the study's numbers beside them.
+    """
+    from .._validate import DPI
+    from ..studies.report import write_report
+
+    if not 0 < confidence < 1:
+        raise click.BadParameter(
+            f"must be in (0, 1), got {confidence!r}", param_hint="--confidence"
+        )
+    DPI.check("dpi", dpi)
+    result = write_report(source, out_dir, confidence=confidence, dpi=dpi)
+    c = result["claims"]
+    crit = c["eq10_criterion"]["measured_kappa_rep"]
+    click.echo(
+        f"{c['eq3_linearity']['tasks']} analysed tasks; Eq. 10 agrees in {crit['agree']} of "
+        f"{crit['decided']} decided parameter sets -> {out_dir}/README.md"
+    )

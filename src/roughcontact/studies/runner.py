@@ -264,6 +264,10 @@ def _pending(spec, out, resume):
             done[task.id] = info
         else:
             todo.append(task)
+    # whole seeds first (Dask runs submissions in order): a study stopped part-way holds
+    # complete realisations of the grid, not every seed of its first parameter sets
+    seeds = list(spec.axes.get("seed", ()))
+    todo.sort(key=lambda t: (seeds.index(t.params["seed"]) if seeds else 0, t.id))
     return done, todo
 
 
