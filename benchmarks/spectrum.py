@@ -50,7 +50,7 @@ def extremes(apply, m, lowest=1):
 
 def case(n, la, seed, step=10, lowest=1):
     from roughcontact.solvers import smooth
-    from roughcontact.solvers._ops import compliance_operator, stiffness_operator
+    from roughcontact.solvers.fourier import compliance_operator, stiffness_operator
 
     _, law, sub, _, res = approach_state(n, la, seed, step, tol=1e-8)
     gap = np.ravel(res.gap)

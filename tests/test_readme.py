@@ -460,6 +460,13 @@ def section_runs(tmp_path_factory):
             directory = tmp_path_factory.mktemp(f"readme-{slug(section)[:30] or 'top'}")
             if (ROOT / "studies").is_dir():  # the README's relative paths to study files
                 shutil.copytree(ROOT / "studies", directory / "studies")
+            for part in ("reproduction/reproduction.toml", "reproduction/data"):
+                source = ROOT / part  # the committed reproduction (its report is rebuilt)
+                if source.is_dir():
+                    shutil.copytree(source, directory / part)
+                elif source.is_file():
+                    (directory / part).parent.mkdir(parents=True, exist_ok=True)
+                    shutil.copy(source, directory / part)
             examples = [e for e in EXAMPLES if e.section == section]
             runs[section] = SectionRun(section, examples, directory)
         return runs[section]

@@ -14,7 +14,7 @@ from .analysis import (
     perimeter,
     perimeter_edges,
 )
-from .elastic import Substrate
+from .elastic import ElasticOperator, Substrate
 from .interactions import Exponential, HardWall, LennardJones93, MaugisDugdale, SmoothLJ93
 from .solvers import (
     ContactResult,
@@ -38,11 +38,13 @@ from .surfaces import (
     sphere,
     statistics,
 )
+from .topography import load_topography, stick
 
 __version__ = "0.1.0"
 
 __all__ = [
     "ContactResult",
+    "ElasticOperator",
     "Exponential",
     "HardWall",
     "LennardJones93",
@@ -61,6 +63,7 @@ __all__ = [
     "first_contact_offset",
     "flat",
     "load_heights",
+    "load_topography",
     "perimeter",
     "perimeter_edges",
     "polonsky_keer",
@@ -72,5 +75,6 @@ __all__ = [
     "solve",
     "sphere",
     "statistics",
+    "stick",
     "to_device",
 ]

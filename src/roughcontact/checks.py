@@ -12,12 +12,15 @@ from __future__ import annotations
 
 import numpy as np
 
+from ._backend import array_namespace
+
 __all__ = ["load_work_balance", "total_energy"]
 
 
 def total_energy(result, substrate, interaction) -> float:
     """Elastic plus interaction energy of ``result`` (pressure × length³)."""
-    site_energy = float(np.sum(interaction.energy(result.gap)))
+    xp = array_namespace(result.gap)  # summed where the result's fields are
+    site_energy = float(xp.sum(interaction.energy(result.gap)))
     return substrate.energy(result.deflection) + substrate.pixel_size**2 * site_energy
 
 

@@ -181,17 +181,22 @@ def test_everything_stays_on_the_heights_device(law, control, value):
     value = value + float(h.max()) if control == "offset" else value
     ref = rc.solve(h, sub, law, **{control: value})
     got = rc.solve(xp.asarray(h, device=other), sub, law, **{control: value})
+    # the record's fields stay there too (a host copy only through to_numpy)
+    assert all(getattr(got, k).device == other for k in ("pressure", "gap", "deflection"))
     if isinstance(law, rc.Exponential) and control == "offset":
         # the bounded solver's path is sensitive to its float32 convolutions, which
         # numpy.fft (strict) and scipy.fft (NumPy) round differently: the same state
         # to the default tolerance (1e-8)
         assert got.converged and abs(got.iterations - ref.iterations) <= 2
-        np.testing.assert_allclose(got.pressure, ref.pressure, rtol=1e-9, atol=1e-8)
+        np.testing.assert_allclose(got.to_numpy().pressure, ref.pressure, rtol=1e-9, atol=1e-8)
     else:
         assert got.converged and got.iterations == ref.iterations
-        np.testing.assert_allclose(got.pressure, ref.pressure, rtol=1e-9, atol=1e-12)
+        np.testing.assert_allclose(got.to_numpy().pressure, ref.pressure, rtol=1e-9, atol=1e-12)
     warm = rc.solve(xp.asarray(h, device=other), sub, law, initial=ref, **{control: value})
     assert warm.converged
+    # a warm start from a record on that device
+    again = rc.solve(xp.asarray(h, device=other), sub, law, initial=got, **{control: value})
+    assert again.converged and again.pressure.device == other
 
 
 def test_paths_and_statistics_on_another_device():

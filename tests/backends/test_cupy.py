@@ -45,9 +45,29 @@ def test_gpu_states_equal_the_cpu_ones(law, control, how):
     else:
         got = rc.solve(cupy.asarray(H), SUB, law, tol=1e-10, **control)
     assert got.converged, got.message
-    assert isinstance(got.pressure, np.ndarray)  # the record is NumPy (an edge)
-    np.testing.assert_allclose(got.pressure, ref.pressure, rtol=1e-7, atol=1e-10 * abs(ref.load))
+    # the record's fields stay on the GPU; to_numpy is the edge
+    assert all(isinstance(getattr(got, k), cupy.ndarray) for k in ("pressure", "gap", "deflection"))
+    host = got.to_numpy()
+    np.testing.assert_allclose(host.pressure, ref.pressure, rtol=1e-7, atol=1e-10 * abs(ref.load))
     assert got.offset == pytest.approx(ref.offset, abs=1e-9)
+    assert got.perimeter_edges == ref.perimeter_edges
+    # a warm start from the GPU record
+    warm = rc.solve(cupy.asarray(H), SUB, law, initial=got, tol=1e-10, **control)
+    ref_warm = rc.solve(H, SUB, law, initial=ref, tol=1e-10, **control)
+    assert warm.converged and isinstance(warm.gap, cupy.ndarray)
+    assert abs(warm.iterations - ref_warm.iterations) <= 2
+
+
+def test_contact_map_counts_on_the_gpu():
+    from roughcontact.analysis.contact_geometry import count_patches
+
+    rng = np.random.default_rng(1)
+    for fraction in (0.0, 0.3, 0.55, 0.7, 1.0):
+        mask = rng.random((N, N - 8)) < fraction
+        for periodic in (True, False):
+            want = rc.contact_patches(mask, periodic=periodic)[1].size
+            assert count_patches(cupy.asarray(mask), periodic=periodic) == want
+        assert rc.perimeter_edges(cupy.asarray(mask)) == rc.perimeter_edges(mask)
 
 
 def test_gpu_path_and_float32():

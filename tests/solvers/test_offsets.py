@@ -86,3 +86,27 @@ def test_the_studies_use_it():
         got = path_values(path, H, law, params)
         np.testing.assert_array_equal(got[:2], H.max() + d0 + np.array([2.0, 1.0]))
         np.testing.assert_array_equal(got[2:], relative_offsets(H, path["values"], unit, law))
+
+
+def test_stepped_values_are_the_arithmetic_progression_to_stop():
+    from roughcontact.solvers.offsets import stepped_values
+
+    # decimal steps reach STOP despite rounding (0.1 * 10 > 1 - 1e-9 steps short)
+    np.testing.assert_allclose(stepped_values(0, 1, 0.1), np.linspace(0, 1, 11), atol=1e-15)
+    np.testing.assert_allclose(stepped_values(1, 0, 0.1), np.linspace(1, 0, 11), atol=1e-15)
+    np.testing.assert_array_equal(stepped_values(2, -1, -1), [2.0, 1.0, 0.0, -1.0])  # |STEP|
+    np.testing.assert_array_equal(stepped_values(0, 0.95, 0.25), [0, 0.25, 0.5, 0.75])
+    assert stepped_values(3, 3, 1).tolist() == [3.0]
+    assert stepped_values(0, 2, 1).dtype == np.float64  # integers in, float64 out
+    for args, words in (
+        ((0, 1, 0), "--offsets STEP must be non-zero"),
+        ((0, np.inf, 1), "must be finite"),
+        ((0, 1e6, 1), "gives more than 100000 steps"),
+    ):
+        with pytest.raises(rc.ParameterError, match=words):
+            stepped_values(*args, name="--offsets")
+    # the studies' [path] start/stop/step step the same way
+    path = {"values": None, "num": None, "start": 0.5, "stop": -2.0, "step": 0.125,
+            "control": "load", "unit": "modulus"}  # fmt: skip
+    loads = path_values(path, H, None, {"pixel_size": 1.0, "contact_modulus": 2.0})
+    np.testing.assert_allclose(loads, 2.0 * np.linspace(0.5, -2.0, 21), atol=1e-15)

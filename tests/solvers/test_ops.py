@@ -6,13 +6,9 @@ import numpy as np
 import pytest
 
 import roughcontact as rc
-from roughcontact.solvers._ops import (
-    RELIABLE_EVERY,
-    ReliableUpdates,
-    compliance_operator,
-    dot,
-    in_single_precision,
-)
+from roughcontact.solvers.fourier import compliance_operator, in_single_precision
+from roughcontact.solvers.loop_control import RELIABLE_EVERY, ReliableUpdates
+from roughcontact.solvers.reductions import dot
 
 
 @pytest.mark.parametrize("thickness", [None, 8.0])
@@ -65,7 +61,7 @@ def test_reliable_updates_schedule():
 
 
 def test_anderson_bjorck_keeps_a_bracket():
-    from roughcontact.solvers._ops import anderson_bjorck
+    from roughcontact.solvers.roots import anderson_bjorck
 
     f = lambda x: x**3 - 1e-3  # noqa: E731
     a, b = 0.0, 1.0
@@ -87,7 +83,7 @@ def test_anderson_bjorck_keeps_a_bracket():
     ],
 )
 def test_bracketed_root_against_closed_forms(f, a, b, root):
-    from roughcontact.solvers._ops import bracketed_root
+    from roughcontact.solvers.roots import bracketed_root
 
     calls = []
 

@@ -19,7 +19,7 @@ def test_point_responses_are_the_convolution_of_the_point_forces(thickness, dtyp
     coeffs = np.array([1.0, -0.5, 2.0, 0.25])
     forces = np.zeros(shape[0] * shape[1])
     forces[sites] = coeffs
-    compliance = sub._arrays(np.zeros(1))[1]
+    compliance = sub.multipliers(np.zeros(1)).compliance
     want = np.fft.irfft2(np.fft.rfft2(forces.reshape(shape)) * compliance, s=shape)
     s = np.full(forces.size, 0.125, dtype=dtype)
     kernel = _PointKernel(sub, dtype)

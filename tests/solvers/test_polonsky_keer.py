@@ -201,12 +201,12 @@ def test_single_precision_convolutions_reach_float64_accuracy(control, periodic_
     # directions, which were built on the drifted field.
     import importlib
 
-    from roughcontact.solvers import _ops
+    from roughcontact.solvers import loop_control
 
     pk = importlib.import_module("roughcontact.solvers.polonsky_keer")
     if periodic_only:  # replacements that come late, when the drift exceeds the residual
-        monkeypatch.setattr(_ops, "RELIABLE_DROP", 0.0)
-        monkeypatch.setattr(_ops, "RELIABLE_EVERY", 20)
+        monkeypatch.setattr(loop_control, "RELIABLE_DROP", 0.0)
+        monkeypatch.setattr(loop_control, "RELIABLE_EVERY", 20)
     h = rc.self_affine((128, 128), hurst=0.8, rms_slope=0.1, short_cutoff=8, seed=3)
     sub = rc.Substrate((128, 128))
     kw = {"load": 1e-3} if control == "load" else {"offset": float(h.max() - 1.5 * h.std())}
@@ -320,7 +320,7 @@ def test_preconditioning_resumes_after_a_lost_contact_set(monkeypatch):
     # guess can lose the whole contact set; the restart then takes plain steps, which
     # cannot repeat that path, and preconditioned ones again once the residual is well
     # below its value before the loss (plain to the end took 290 iterations here)
-    from roughcontact.solvers import _ops
+    from roughcontact.solvers import pk_rules
 
     h = rc.self_affine((128, 128), hurst=0.8, rms_slope=0.1, short_cutoff=8, seed=2)
     sub = rc.Substrate((128, 128))
@@ -330,7 +330,7 @@ def test_preconditioning_resumes_after_a_lost_contact_set(monkeypatch):
     gap = offset - h + sub.deflection(res.pressure)
     assert np.abs(gap[res.pressure > 0]).max() <= 2e-9 * h.std()
     assert gap.min() >= -2e-9 * h.std()
-    monkeypatch.setattr(_ops, "RESUME_PRECONDITIONING", 0.0)  # plain to the end
+    monkeypatch.setattr(pk_rules, "RESUME_PRECONDITIONING", 0.0)  # plain to the end
     slow = rc.solve(h, sub, offset=offset, tol=1e-9)
     assert slow.converged and slow.iterations > 2 * res.iterations
     np.testing.assert_allclose(res.pressure, slow.pressure, atol=1e-7 * slow.pressure.max())

@@ -131,10 +131,7 @@ def _converged_state(n=128):
 
 
 def _operators(sub, law, gap, single=False):
-    from roughcontact.solvers._ops import (
-        compliance_operator,
-        stiffness_operator,
-    )
+    from roughcontact.solvers.fourier import compliance_operator, stiffness_operator
     from roughcontact.solvers.smooth import _precondition, _stiff_sites
 
     g = gap.ravel()
@@ -176,7 +173,7 @@ def test_block_preconditioner_bounds_the_spectrum():
     # it (Lanczos on B H in the B^-1 inner product = eigenvalues of B^1/2 H B^1/2)
     from scipy.sparse.linalg import LinearOperator, eigs
 
-    from roughcontact.solvers._ops import compliance_operator
+    from roughcontact.solvers.fourier import compliance_operator
 
     sub, law, res = _converged_state(128)
     block, hessian, _ = _operators(sub, law, res.gap)
@@ -207,11 +204,11 @@ def test_single_precision_convolutions_reach_float64_accuracy(system, periodic_o
     # exact float64 evaluation as the residual falls and before convergence is declared,
     # so the force balance holds far below float32's resolution (independent check).
     # Late replacements (drift above the residual) restart the conjugate directions.
-    from roughcontact.solvers import _ops
+    from roughcontact.solvers import loop_control
 
     if periodic_only:
-        monkeypatch.setattr(_ops, "RELIABLE_DROP", 0.0)
-        monkeypatch.setattr(_ops, "RELIABLE_EVERY", 20)
+        monkeypatch.setattr(loop_control, "RELIABLE_DROP", 0.0)
+        monkeypatch.setattr(loop_control, "RELIABLE_EVERY", 20)
     h, sub = system
     law = SmoothLJ93.from_adhesion_length(0.05)
     res = rc.solve(h, sub, law, offset=h.max() + 0.2, tol=1e-12)
@@ -242,7 +239,7 @@ def test_line_search_meets_its_tolerance_in_few_evaluations(stiffness):
     # phi'(alpha) = c0 + alpha c1 - s.p(gap + alpha s) along an approach (s < 0) onto a
     # steep core: the Newton guess from alpha = 0 lands where phi' is 1e10x larger, and
     # plain regula falsi then crawls; the bisection safeguard must bound the evaluations
-    from roughcontact.solvers.smooth import _line_minimum
+    from roughcontact.solvers.line_search import line_minimum
 
     rng = np.random.default_rng(4)
     gap = rng.uniform(1.5, 3.0, 200)
@@ -253,7 +250,7 @@ def test_line_search_meets_its_tolerance_in_few_evaluations(stiffness):
     slope0 = -float(s @ law.pressure(gap)) - 50.0  # phi'(0) < 0: descent
     kw[:] = -50.0 / float(s @ s) * s  # c0 = s.kw = -50
     law.calls = 0
-    alpha = _line_minimum(law, gap, s, kw, ks, slope0, rtol=1e-3)
+    alpha = line_minimum(law, gap, s, kw, ks, slope0, rtol=1e-3)
 
     def phi_slope(a):
         return float(s @ kw) + a * float(s @ ks) - float(s @ law.pressure(gap + a * s))

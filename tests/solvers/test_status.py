@@ -126,7 +126,7 @@ def test_line_search_failure(monkeypatch, module):
     def failing(*args, with_pressure=False, **kwargs):
         return (np.nan, None, None) if with_pressure else np.nan
 
-    monkeypatch.setattr(module, "_line_minimum", failing)
+    monkeypatch.setattr(module, "line_minimum", failing)
     law = SMOOTH if module is smooth else HARD_CORE
     res = rc.solve(H, SUB, law, offset=TOP - 0.3)
     assert res.status is SolveStatus.LINE_SEARCH_FAILED and not res.converged
@@ -134,7 +134,7 @@ def test_line_search_failure(monkeypatch, module):
 
 
 def test_float32_stall_guard_reports_stalled():
-    ops = importlib.import_module("roughcontact.solvers._ops")
+    ops = importlib.import_module("roughcontact.solvers.loop_control")
     guard = ops.StallGuard("float32", patience=2)
     end = None
     for it in range(10):

@@ -99,3 +99,22 @@ def test_save_rejects_bad_heights(tmp_path):
 def test_save_to_missing_directory(tmp_path):
     with pytest.raises(ParameterError, match="nodir"):
         save_heights(tmp_path / "nodir" / "x.txt", np.ones((2, 2)))
+
+
+def test_plain_files_have_one_channel(tmp_path, heights):
+    save_heights(tmp_path / "h.npy", heights)
+    for channel in (None, 0, "heights"):
+        np.testing.assert_array_equal(load_heights(tmp_path / "h.npy", channel=channel), heights)
+    with pytest.raises(ParameterError, match="channel") as e:
+        load_heights(tmp_path / "h.npy", channel="Height")
+    assert "h.npy" in str(e.value) and "\n" not in str(e.value)
+
+
+def test_text_with_a_header_is_not_plain_text(tmp_path):
+    # a header makes it an instrument file; SurfaceTopography finds no units in this one,
+    # and the one-line error gives numpy's reason too
+    pytest.importorskip("SurfaceTopography")
+    (tmp_path / "xy.txt").write_text("Scan Data\nLateral um,Raw nm\n0,1\n1,2\n")
+    with pytest.raises(ParameterError, match="as plain text.*'Scan'") as e:
+        load_heights(tmp_path / "xy.txt")
+    assert "xy.txt" in str(e.value) and "\n" not in str(e.value)

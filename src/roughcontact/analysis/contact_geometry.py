@@ -3,37 +3,60 @@
 All functions take a boolean map (True = site in the set, e.g. repulsive) on a periodic
 grid. They are exact counts, except :func:`corrected_area`, which is the
 perimeter-corrected estimate of the true contact area of Yastrebov et al. (2017).
+
+Maps of any array-API backend (NumPy, CuPy, ...) are counted where they live: only the
+counts reach the host, so a path on a GPU does not copy its contact maps. The one
+exception is :func:`contact_patches`, whose labelled map is NumPy (scipy.ndimage).
 """
 
 from __future__ import annotations
 
 import numpy as np
+from array_api_compat import is_array_api_obj
 
-from .._backend import to_numpy
+from .._backend import array_device, array_namespace, is_numpy_array, to_numpy
 from .._validate import ParameterError, positive
 
-__all__ = ["area_fraction", "contact_patches", "corrected_area", "perimeter", "perimeter_edges"]
+__all__ = [
+    "area_fraction",
+    "contact_patches",
+    "corrected_area",
+    "count_patches",
+    "perimeter",
+    "perimeter_edges",
+]
 
 #: Area (in units of a0²) removed per contact/non-contact bond by :func:`corrected_area`:
 #: (π − 1 + ln 2)/24 ≈ 0.1181 (Yastrebov, Anciaux & Molinari, Tribol. Int. 114, 161 (2017)).
 AREA_CORRECTION_PER_EDGE = (np.pi - 1.0 + np.log(2.0)) / 24.0
 
 
+def _bool_map(mask):
+    """``mask`` as a boolean array of its own backend (nonzero = True; lists: NumPy)."""
+    if not is_array_api_obj(mask):
+        return np.asarray(mask, dtype=bool)
+    xp = array_namespace(mask)
+    return mask if mask.dtype == xp.bool else xp.astype(mask, xp.bool)
+
+
 def area_fraction(mask) -> float:
-    """Fraction of sites in ``mask`` (A/A0)."""
-    m = to_numpy(mask)
-    return float(np.count_nonzero(m)) / m.size
+    """Fraction of sites in ``mask`` (A/A0), counted on the mask's device."""
+    m = _bool_map(mask)
+    return float(array_namespace(m).count_nonzero(m)) / m.size
 
 
 def perimeter_edges(mask) -> int:
     """Number of nearest-neighbour bonds that cross the boundary of ``mask``.
 
     Bonds are counted on the periodic square lattice in both directions; for a convex
-    region this is the 'Manhattan' perimeter in units of a0.
+    region this is the 'Manhattan' perimeter in units of a0. A bond crosses the boundary
+    where a site and its periodic neighbour differ, so the count is that of
+    ``m != roll(m, 1)`` along each axis, taken on the mask's device (array API).
     """
-    m = np.asarray(to_numpy(mask), dtype=bool)
-    return int(
-        np.count_nonzero(m != np.roll(m, 1, axis=0)) + np.count_nonzero(m != np.roll(m, 1, axis=1))
+    m = _bool_map(mask)
+    xp = array_namespace(m)
+    return int(xp.count_nonzero(m != xp.roll(m, 1, axis=0))) + int(
+        xp.count_nonzero(m != xp.roll(m, 1, axis=1))
     )
 
 
@@ -89,16 +112,50 @@ def corrected_area(mask, pixel_size: float = 1.0) -> float:
     International 114, 161-171 (2017), arXiv:1701.02727.
     """
     a0 = positive("pixel_size", pixel_size)
-    m = np.asarray(to_numpy(mask), dtype=bool)
-    if m.ndim != 2:
-        raise ParameterError(f"mask must be a 2D array, got {m.ndim} dimension(s)")
-    n_c = np.count_nonzero(m)
+    m = _mask2d(mask)
+    n_c = int(array_namespace(m).count_nonzero(m))
     n_e = perimeter_edges(m)
     return float((n_c - AREA_CORRECTION_PER_EDGE * n_e) * a0 * a0)
 
 
+def _mask2d(mask):
+    m = _bool_map(mask)
+    if m.ndim != 2:
+        raise ParameterError(f"mask must be a 2D array, got {m.ndim} dimension(s)")
+    return m
+
+
+def _periodic_union(labels, n):
+    """Join the patches 1..n of ``labels`` that touch across the periodic boundaries.
+
+    Only the boundary rows and columns are read (copied to the host: O(nx + ny) labels).
+    Returns ``(find, merges)``: the root of each label and the number of joins made.
+    """
+    parent = np.arange(n + 1)
+
+    def find(a):
+        while parent[a] != a:
+            parent[a] = parent[parent[a]]
+            a = parent[a]
+        return a
+
+    merges = 0
+    for a, b in ((labels[0, :], labels[-1, :]), (labels[:, 0], labels[:, -1])):
+        a, b = to_numpy(a), to_numpy(b)
+        both = (a > 0) & (b > 0)
+        for i, j in set(zip(a[both].tolist(), b[both].tolist(), strict=True)):
+            ri, rj = find(i), find(j)
+            if ri != rj:
+                parent[max(ri, rj)] = min(ri, rj)
+                merges += 1
+    return find, merges
+
+
 def contact_patches(mask, *, periodic: bool = True):
     """Label connected patches (4-neighbour connectivity) with periodic wrap-around.
+
+    An edge to the host: the labelled map is NumPy (scipy.ndimage), whatever the
+    backend of ``mask``. :func:`count_patches` counts them on the mask's device.
 
     Parameters
     ----------
@@ -119,22 +176,7 @@ def contact_patches(mask, *, periodic: bool = True):
     labels, n = ndimage.label(m)
     if n == 0:
         return labels, np.zeros(0, dtype=int)
-    parent = np.arange(n + 1)
-
-    def find(a):
-        while parent[a] != a:
-            parent[a] = parent[parent[a]]
-            a = parent[a]
-        return a
-
-    if periodic:
-        pairs = [(labels[0, :], labels[-1, :]), (labels[:, 0], labels[:, -1])]
-        for a, b in pairs:
-            both = (a > 0) & (b > 0)
-            for i, j in set(zip(a[both].tolist(), b[both].tolist(), strict=True)):
-                ri, rj = find(i), find(j)
-                if ri != rj:
-                    parent[max(ri, rj)] = min(ri, rj)
+    find = _periodic_union(labels, n)[0] if periodic else (lambda a: a)
     roots = np.array([find(i) for i in range(n + 1)])
     merged = roots[labels]
     uniq, inverse, counts = np.unique(merged, return_inverse=True, return_counts=True)
@@ -144,3 +186,94 @@ def contact_patches(mask, *, periodic: bool = True):
     relabel = np.zeros(uniq.size, dtype=int)
     relabel[np.flatnonzero(keep)[order]] = np.arange(1, order.size + 1)
     return relabel[inverse].reshape(m.shape), counts[keep][order]
+
+
+def count_patches(mask, *, periodic: bool = True) -> int:
+    """Number of connected patches of ``mask`` (4-neighbour connectivity), on its device.
+
+    The number of labels of :func:`contact_patches`, without labelling on the host:
+    NumPy maps are labelled by scipy.ndimage and CuPy maps by cupyx.scipy.ndimage, then
+    the labels that touch across the periodic boundaries are joined (the boundary rows
+    and columns are read on the host); maps of any other array-API backend are counted
+    by :func:`_count_components`. Only integers reach the host.
+
+    Parameters
+    ----------
+    mask : 2D bool array of any array-API backend (nonzero = True)
+    periodic : bool
+        Count patches that touch across the periodic boundaries as one.
+
+    Returns
+    -------
+    int
+        The number of patches (0 for an empty map, 1 for a full one).
+
+    Raises
+    ------
+    ParameterError
+        If ``mask`` is not two-dimensional.
+    """
+    m = _mask2d(mask)
+    if is_numpy_array(m):
+        from scipy.ndimage import label
+    elif type(m).__module__.split(".")[0] == "cupy":
+        from cupyx.scipy.ndimage import label
+    else:
+        return _count_components(m, periodic)
+    labels, n = label(m)
+    n = int(n)
+    if periodic and n > 1:
+        n -= _periodic_union(labels, n)[1]
+    return n
+
+
+def _count_components(m, periodic: bool) -> int:
+    """Connected components of the 2D bool map ``m`` with array-API operations only.
+
+    Min-label union-find by gathers, since the array API has no scatter: each round,
+    every bond (u, v) inside the map hooks the larger of the labels L[u], L[v] to the
+    smaller (L[max] <- min, a scatter-min done by sorting the bonds by target and reading
+    each target's first entry through ``searchsorted``), then pointer jumping L <- L[L]
+    makes every label a root. Labels only decrease and always name a site of the same
+    component; when a round changes nothing they are equal across every bond, hence
+    constant on each component, whose one root (L[i] = i) is counted. Shiloach & Vishkin,
+    J. Algorithms 3, 57 (1982); a handful of rounds on contact maps (each a sort of 2n
+    bonds).
+    """
+    xp = array_namespace(m)
+    nx, ny = m.shape
+    n = nx * ny
+    if n == 0:
+        return 0
+    device = array_device(m)
+    site = xp.arange(n, dtype=xp.int64, device=device)
+    outside = xp.full_like(site, n)  # the label of every site outside the map: a root
+    inside = xp.reshape(m, (-1,))
+    grid = xp.reshape(site, (nx, ny))
+    lo, hi = [], []
+    for axis, wraps in ((0, site // ny == nx - 1), (1, site % ny == ny - 1)):
+        neighbour = xp.reshape(xp.roll(grid, -1, axis=axis), (-1,))
+        bond = inside & xp.take(inside, neighbour)
+        if not periodic:
+            bond = bond & ~wraps
+        # bonds not inside the map join `outside` to itself: no effect
+        lo.append(xp.where(bond, site, outside))
+        hi.append(xp.where(bond, neighbour, outside))
+    u, v = xp.concat(lo), xp.concat(hi)
+    every = xp.arange(n + 1, dtype=xp.int64, device=device)
+    label = xp.concat((xp.where(inside, site, outside), every[n:]))
+    while True:
+        lu, lv = xp.take(label, u), xp.take(label, v)
+        key = xp.sort(xp.maximum(lu, lv) * (n + 1) + xp.minimum(lu, lv))
+        target = key // (n + 1)
+        first = xp.minimum(xp.searchsorted(target, every), key.shape[0] - 1)
+        hooked = xp.where(xp.take(target, first) == every, xp.take(key % (n + 1), first), label)
+        new = xp.minimum(label, hooked)
+        while True:
+            jumped = xp.take(new, new)
+            if bool(xp.all(jumped == new)):
+                break
+            new = jumped
+        if bool(xp.all(new == label)):
+            return int(xp.count_nonzero(new[:n] == site))
+        label = new

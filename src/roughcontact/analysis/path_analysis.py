@@ -44,16 +44,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .._validate import (
-    FIT_MAX_AREA,
-    GRID_SIZE,
-    PIXEL_SIZE,
-    POISSON,
-    TARGET_AREA,
-    ParameterError,
-    Range,
-    json_ready,
-)
+from .._validate import FIT_MAX_AREA, TARGET_AREA, ParameterError, json_ready
+from ..pathdata import REQUIRED, check_path, read_path
 from .hard_wall_reference import band_width
 from .hard_wall_reference import hard_wall_reference as _hard_wall_reference
 from .path import interpolate_at_area
@@ -61,19 +53,8 @@ from .stickiness import NOT_STICKY, STICKY, is_sticky
 
 __all__ = ["PathAnalysis", "UnconvergedPathError", "analyze_path", "load_path"]
 
-_REQUIRED = ("offset", "load", "repulsive_load", "attractive_load", "repulsive_area",
-             "attractive_area", "perimeter", "branch")  # fmt: skip
-_REQUIRED_ATTRS = ("rms_slope", "contact_modulus", "pixel_size", "nominal_area")
-_POSITIVE = Range(0, lo_open=True)
-#: The accepted values of the attributes the analysis reads (checked before any work).
-_ATTR_RANGES = {
-    "rms_slope": Range(0),
-    "contact_modulus": _POSITIVE,
-    "pixel_size": PIXEL_SIZE,
-    "nominal_area": _POSITIVE,
-    "poisson": POISSON,
-    "thickness": _POSITIVE,  # or inf: a half-space
-}
+#: The variables the analysis reads (the path layout's required ones).
+_REQUIRED = REQUIRED
 #: πδ/d_rep above which the soft wall's repulsive band is reported as a warning.
 BAND_WARNING = 0.1
 
@@ -164,58 +145,20 @@ class PathAnalysis:
 
 
 def load_path(path):
-    """Open a path NetCDF file written by roughcontact; a clear error if it is not one."""
-    import xarray as xr
+    """Open a path NetCDF file written by roughcontact; a clear error if it is not one.
 
-    try:
-        ds = xr.load_dataset(path, engine="h5netcdf")
-    except (OSError, ValueError) as err:
-        raise ParameterError(
-            f"path file {str(path)!r} is not a readable NetCDF file: {err}"
-        ) from None
-    return ds
+    :func:`roughcontact.pathdata.read_path`: a one-line ParameterError when the file is not
+    NetCDF or not a path the analysis can read (:func:`_check`).
+    """
+    return read_path(path)
 
 
 def _check(ds):
-    missing = [k for k in _REQUIRED if k not in ds.variables]
-    missing += [f"attribute {k}" for k in _REQUIRED_ATTRS if k not in ds.attrs]
-    if missing:
-        raise ParameterError(
-            "path dataset lacks " + ", ".join(missing) + " (not written by roughcontact "
-            "approach_retract / 'roughcontact path', or by an older version)"
-        )
-    for key, rng in _ATTR_RANGES.items():
-        if key not in ds.attrs:
-            continue
-        value = ds.attrs[key]
-        if isinstance(value, (np.ndarray, np.generic)) and np.size(value) == 1:
-            value = value.item()  # NumPy scalars from the file as Python numbers
-        half_space = key == "thickness" and _is_inf(value)
-        if not half_space and not rng.contains(value):
-            raise ParameterError(
-                f"path dataset attribute {key} = {value!r} is out of range: accepted "
-                f"{rng.accepted} (the file was edited or is not a roughcontact path)"
-            )
-    if "grid" in ds.attrs:
-        grid = np.atleast_1d(ds.attrs["grid"])
-        if grid.size != 2 or not all(GRID_SIZE.contains(g) for g in grid):
-            raise ParameterError(
-                f"path dataset attribute grid = {ds.attrs['grid']!r} is out of range: "
-                f"accepted two grid sizes, each {GRID_SIZE.accepted}"
-            )
-    for name in _REQUIRED:
-        if name == "branch":
-            continue
-        values = np.asarray(ds[name].values)
-        if values.dtype.kind not in "fiub" or not np.all(np.isfinite(values)):
-            raise ParameterError(
-                f"path dataset variable {name} must hold finite numbers at every step "
-                "(the file was edited or is not a roughcontact path)"
-            )
+    """A one-line ParameterError unless ``ds`` is a path the analysis can read.
 
-
-def _is_inf(value) -> bool:
-    return isinstance(value, (float, np.floating)) and value == math.inf
+    :func:`roughcontact.pathdata.check_path`, the one check of the path layout.
+    """
+    check_path(ds)
 
 
 def _fit_kappa(load, area, max_area, rms_slope, modulus):

@@ -59,9 +59,10 @@ def analyze(
     quantities. ``sticky``/``verdict``: κ < 0 at the target area (the pull-off force is
     reported beside it). The predicted_* keys are Pastewka & Robbins' Eqs. 6, 7 and 10
     for the path's surface and interaction (with the measured κ_rep and d_rep;
-    *_from_curvature: d_rep = 4h'/h''; *_continuum: κ_rep = 2). kappa_rep_hard_wall(_corrected)
-    and band_width: the hard wall on the same surface. Exit code 3 if the steps around
-    the target area did not converge (unless --allow-unconverged), 2 on bad input.
+    ``*_from_curvature``: d_rep = 4h'/h''; ``*_continuum``: κ_rep = 2).
+    kappa_rep_hard_wall(_corrected) and band_width: the hard wall on the same surface.
+    Exit code 3 if the steps around the target area did not converge (unless
+    --allow-unconverged), 2 on bad input.
     """
     from ..analysis.path_analysis import UnconvergedPathError, analyze_path, load_path
 

@@ -22,19 +22,9 @@ def _load(source: Path):
         from ..plot import study_maps
 
         return collect_study(source), study_maps(source)
-    import xarray as xr
+    from ..studies.collect import read_collected
 
-    try:
-        ds = xr.load_dataset(source, engine="h5netcdf")
-    except (OSError, ValueError) as err:
-        raise ParameterError(
-            f"{str(source)!r} is neither a study directory nor a readable NetCDF file: {err}"
-        ) from None
-    if "task" not in ds.dims:
-        raise ParameterError(
-            f"{str(source)!r} is not a collected study (no 'task' dimension); make one with "
-            "'roughcontact study collect DIR -o OUT.nc'"
-        )
+    ds = read_collected(source)
     return ds, []
 
 

@@ -138,7 +138,7 @@ def _make_interaction(
     )
 
 
-def _substrate(shape, modulus, pixel_size, thickness, poisson, base):
+def _substrate(shape, modulus, pixel_size, thickness, poisson, base, periodic=True):
     from ..elastic import Substrate
 
     return Substrate(
@@ -148,6 +148,7 @@ def _substrate(shape, modulus, pixel_size, thickness, poisson, base):
         thickness=thickness,
         poisson=poisson,
         base=base,
+        periodic=periodic,
     )
 
 
@@ -186,6 +187,14 @@ def _substrate_options(f):
             help="Layer attachment to its rigid base.",
         ),
         click.option(
+            "--non-periodic",
+            "non_periodic",
+            is_flag=True,
+            default=False,
+            help="Free boundary: press the surface as measured, without periodic images "
+            "(a half-space on a zero-padded grid; not with --thickness).",
+        ),
+        click.option(
             "--tol",
             type=float,
             default=None,
@@ -213,6 +222,34 @@ def _substrate_options(f):
             default="float64",
             show_default=True,
             help="Floating-point precision of the computation.",
+        ),
+    ]
+    for o in reversed(opts):
+        f = o(f)
+    return f
+
+
+def _surface_file_options(f):
+    """--channel, --detrend and --fill-missing of the commands that read a SURFACE file."""
+    opts = [
+        click.option(
+            "--channel",
+            default=None,
+            help="Channel of an instrument file, by name or index (default: the file's "
+            "default channel).",
+        ),
+        click.option(
+            "--detrend",
+            type=click.Choice(["none", "height", "plane", "curvature"]),
+            default="none",
+            show_default=True,
+            help="Least-squares mean, tilt or 2nd-order polynomial removed from SURFACE.",
+        ),
+        click.option(
+            "--fill-missing",
+            is_flag=True,
+            help="Fill missing points of an instrument file (harmonic interpolation) "
+            "instead of refusing it.",
         ),
     ]
     for o in reversed(opts):
@@ -322,6 +359,7 @@ def surface(
     default=None,
     help="Write pressure, gap and deflection to this .npz file.",
 )
+@_surface_file_options
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
 def contact(
     surface_file,
@@ -332,6 +370,7 @@ def contact(
     thickness,
     poisson,
     base,
+    non_periodic,
     tol,
     max_iter,
     device,
@@ -343,6 +382,9 @@ def contact(
     stiffness,
     core_stiffness,
     save_fields,
+    channel,
+    detrend,
+    fill_missing,
     as_json,
 ):
     """Solve one contact state of SURFACE under --load or --offset.
@@ -350,12 +392,11 @@ def contact(
     Exit code 3 if the solver did not converge, 2 on bad input.
     """
     from ..solvers import solve
-    from ..surfaces import load_heights
 
     if (load is None) == (offset is None):
         raise ParameterError("give exactly one of --load or --offset")
-    h = load_heights(surface_file)
-    sub = _substrate(h.shape, modulus, pixel_size, thickness, poisson, base)
+    h, pixel_size, surface = _load_surface(surface_file, channel, detrend, fill_missing, pixel_size)
+    sub = _substrate(h.shape, modulus, pixel_size, thickness, poisson, base, not non_periodic)
     law = _make_interaction(
         interaction, work, range_, stiffness, core_stiffness, modulus, pixel_size, adhesion_length
     )
@@ -366,15 +407,20 @@ def contact(
     if save_fields:
         import numpy as np
 
+        host = res.to_numpy()  # the fields stay on the compute device until here
         np.savez_compressed(
-            save_fields, pressure=res.pressure, gap=res.gap, deflection=res.deflection
+            save_fields, pressure=host.pressure, gap=host.gap, deflection=host.deflection
         )
     summary = res.summary()
+    summary["periodic"] = sub.periodic  # False: a free boundary (--non-periodic)
+    if surface is not None:
+        summary["surface"] = surface  # instrument files: what was read, in which units
     if as_json:
         click.echo(_json(summary))
     else:
-        units = _units(modulus, pixel_size)
+        units = _units(modulus, pixel_size, surface)
         for k, v in summary.items():
+            v = _describe_surface(v) if k == "surface" else v
             click.echo(_line(k, v, units.get(k), 16))
     if not res.converged:
         _fail(
@@ -384,12 +430,72 @@ def contact(
         )
 
 
-def _units(modulus, pixel_size) -> dict:
-    """The unit, in words, of every number the text output prints (lattice units: 1, 1)."""
+def _load_surface(surface_file, channel, detrend, fill_missing, pixel_size):
+    """Heights, pixel size and (instrument files) a summary dict of SURFACE.
+
+    A .npy or text file is read as always, in the length unit of --pixel-size (summary
+    None). An instrument file (AFM, interferometer, ...: anything else) is read through
+    SurfaceTopography in metres with the file's own pixel size, which wins: a
+    --pixel-size given that differs from it is a one-line error.
+    """
+    import numpy as np
+
+    from ..surfaces import load_heights
+    from ..topography import Topography, file_kind, load_topography
+    from ..topography import detrend as remove_trend
+
+    if file_kind(surface_file) != "instrument":
+        h = load_heights(surface_file, channel=channel)
+        if detrend != "none":
+            h = np.array(remove_trend(Topography(h, pixel_size), detrend).heights)
+        return h, pixel_size, None
+    topo = load_topography(surface_file, channel=channel, fill_missing=fill_missing)
+    if topo.dim != 2:
+        raise ParameterError(
+            f"SURFACE {str(surface_file)!r} is a line scan of {topo.shape[0]} points; "
+            "expected a 2D height map"
+        )
+    px = topo.pixel_size[0]
+    if not math.isclose(px, topo.pixel_size[1], rel_tol=1e-9):
+        raise ParameterError(
+            f"SURFACE {str(surface_file)!r} has non-square pixels {topo.pixel_size} m; "
+            "accepted: square pixels"
+        )
+    source = click.get_current_context().get_parameter_source("pixel_size")
+    if source is not click.core.ParameterSource.DEFAULT and not math.isclose(
+        pixel_size, px, rel_tol=1e-6
+    ):
+        raise ParameterError(
+            f"--pixel-size {pixel_size:g} conflicts with the pixel size {px:.6g} m stored in "
+            f"{str(surface_file)!r}; leave --pixel-size out (instrument files: lengths in m)"
+        )
+    topo = remove_trend(topo, detrend)
+    return np.array(topo.heights), px, topo.to_dict()
+
+
+def _describe_surface(s) -> str:
+    """One line on an instrument file's channel, grid and units (text output)."""
+    nx, ny = s["shape"]
+    return (
+        f"{s['source']}, channel {s['channel']!r}, {nx} x {ny} points, pixel size "
+        f"{s['pixel_size'][0]:.6g} m (from the file), heights in m (file: "
+        f"{s['height_unit']}), detrend {s['info'].get('detrend', 'none')}"
+    )
+
+
+def _units(modulus, pixel_size, surface=None) -> dict:
+    """The unit, in words, of every number the text output prints (lattice units: 1, 1).
+
+    ``surface``: the summary of an instrument file (lengths in metres), or None.
+    """
     length = "length, a0 units" if pixel_size == 1 else f"length, units of a0 = {pixel_size:g}"
+    if surface is not None:
+        length = "length, m"
     pressure = "N/A0, units of E*" if modulus == 1 else f"N/A0, pressure, units of E* = {modulus:g}"
     area = "fraction of A0"
     inverse_length = "per A0, 1/length" + ("" if pixel_size == 1 else f" (a0 = {pixel_size:g})")
+    if surface is not None:
+        inverse_length = "per A0, 1/m"
     return {
         "offset": length,
         "mean_gap": length,
@@ -420,22 +526,9 @@ OFFSET_UNITS = ("absolute", "length", "rms_height", "bearing_area")
 
 def _path_values(option, start, stop, step):
     """START, START ± |STEP|, ... up to STOP (inclusive), or a one-line ParameterError."""
-    import numpy as np
+    from ..solvers.offsets import stepped_values
 
-    if not all(math.isfinite(v) for v in (start, stop, step)):
-        raise ParameterError(
-            f"{option} START STOP STEP must be finite numbers, got {start:g} {stop:g} {step:g}"
-        )
-    if step == 0:
-        raise ParameterError(f"{option} STEP must be non-zero")
-    span = abs(stop - start) / abs(step)
-    if not span < MAX_STEPS:
-        raise ParameterError(
-            f"{option} {start:g} {stop:g} {step:g} gives more than {MAX_STEPS} steps "
-            f"(accepted: at most {MAX_STEPS}); use a larger STEP"
-        )
-    count = int(math.floor(span + 1e-9)) + 1
-    return start + np.sign(stop - start or 1) * abs(step) * np.arange(count)
+    return stepped_values(start, stop, step, name=option)
 
 
 @main.command()
@@ -446,7 +539,7 @@ def _path_values(option, start, stop, step):
     type=float,
     default=None,
     metavar="START STOP STEP",
-    help="Approach values START, START ± |STEP|, ... towards STOP (inclusive), in the units "
+    help="Approach values START, START ± abs(STEP), ... towards STOP (inclusive), in the units "
     "of --offset-unit (absolute: offsets d, length; decreasing d approaches).",
 )
 @click.option(
@@ -504,6 +597,7 @@ def _path_values(option, start, stop, step):
     show_default=True,
     help="Rewrite -o with the steps done so far at most this often (s; 0: every step).",
 )
+@_surface_file_options
 @click.option("--json", "as_json", is_flag=True, help="Print a JSON summary.")
 def path(
     surface_file,
@@ -517,6 +611,7 @@ def path(
     thickness,
     poisson,
     base,
+    non_periodic,
     tol,
     max_iter,
     device,
@@ -530,6 +625,9 @@ def path(
     output,
     fields_at,
     checkpoint_seconds,
+    channel,
+    detrend,
+    fill_missing,
     as_json,
 ):
     """Follow a quasi-static approach (and retraction) path; write it to a NetCDF file.
@@ -547,7 +645,6 @@ def path(
     import numpy as np
 
     from ..solvers import PathError, PathInterrupted, approach_retract
-    from ..surfaces import load_heights
 
     if (offsets is None) == (loads is None):
         raise ParameterError("give exactly one of --offsets or --loads")
@@ -563,8 +660,8 @@ def path(
             f"--offsets START and STOP must be in [0, 1] with --offset-unit bearing_area "
             f"(fractions of A0), got {start:g} {stop:g}"
         )
-    h = load_heights(surface_file)
-    sub = _substrate(h.shape, modulus, pixel_size, thickness, poisson, base)
+    h, pixel_size, surface = _load_surface(surface_file, channel, detrend, fill_missing, pixel_size)
+    sub = _substrate(h.shape, modulus, pixel_size, thickness, poisson, base, not non_periodic)
     law = _make_interaction(
         interaction, work, range_, stiffness, core_stiffness, modulus, pixel_size, adhesion_length
     )
@@ -596,6 +693,8 @@ def path(
 
     def save(partial):
         """Write ``partial`` (Ctrl-C/SIGTERM held back meanwhile); a full disk exits 1."""
+        if surface is not None:  # an instrument file: lengths in metres
+            partial.attrs.update(length_unit="m", surface_channel=surface["channel"])
         try:
             with deferred():
                 _write_path(partial, output, surface_file)
@@ -642,15 +741,19 @@ def path(
         "solve_seconds": float(ds["solve_seconds"].sum()),
         "jumps": [int(i) for i in np.flatnonzero(ds["jump"].values)],
         "output": str(output),
+        "periodic": sub.periodic,
     }
+    if surface is not None:
+        summary["surface"] = surface  # instrument files: what was read, in which units
     if as_json:
-        click.echo(json.dumps(summary))
+        click.echo(_json(summary))
     else:
-        units = _units(modulus, pixel_size)
+        units = _units(modulus, pixel_size, surface)
         for k, v in summary.items():
             if k == "pull_off" and v is None:
                 why = "the surfaces never separated" if retract else "no --retract"
                 v, units[k] = "null", f"not measured: {why}"
+            v = _describe_surface(v) if k == "surface" else v
             click.echo(_line(k, v, units.get(k), 14))
     missed = None
     if until_area is not None and not ds.attrs["until_area_reached"]:
@@ -680,14 +783,14 @@ def path(
 def _write_path(ds, output, surface_file):
     """Write a path dataset atomically: a reader never sees a half-written file.
 
-    Through :func:`roughcontact._io.write_netcdf_atomic` (built in memory, then written
-    and renamed over ``output``): a full disk raises :class:`roughcontact._io.WriteError`
-    (one line) with ``output`` as it was and no temporary file left.
+    Through :func:`roughcontact.pathdata.write_path` (built in memory, then written and
+    renamed over ``output``), with the attribute ``surface_file``: a full disk raises
+    :class:`roughcontact._io.WriteError` (one line) with ``output`` as it was and no
+    temporary file left.
     """
-    from .._io import write_netcdf_atomic
+    from ..pathdata import write_path
 
-    ds.attrs["surface_file"] = str(surface_file)
-    write_netcdf_atomic(ds, output)
+    write_path(ds, output, attrs={"surface_file": str(surface_file)})
 
 
 @main.command()
@@ -713,12 +816,13 @@ def _write_path(ds, output, surface_file):
 def demo(size, seed, study_size, seeds, output, as_json):
     """The main job on built-in defaults.
 
+    \b
     1. A non-adhesive load path: A_rep/A0 against load and κ_rep at 1 % contact.
     2. An adhesive study (the paper's Figs. 1-4): κ, κ_rep, κ_att, A_rep/A_att and
-    pull-off for adhesion lengths from non-sticky to sticky, against the theory, with
-    figures and a Markdown report in --output.
+       pull-off for adhesion lengths from non-sticky to sticky, against the theory, with
+       figures and a Markdown report in --output.
     """
-    from .demo import demo as run
+    from ..workflows.demo import demo_path as run
 
     if seeds < 1:  # checked before any work
         raise ParameterError(f"--seeds must be >= 1, got {seeds}")
@@ -737,7 +841,7 @@ def demo(size, seed, study_size, seeds, output, as_json):
     out = run(size=size, seed=seed, progress=progress)
     study = None
     if study_size:
-        from .demo_study import run_demo_study
+        from ..workflows.demo import run_demo_study
 
         study = run_demo_study(
             output, size=study_size, seeds=range(1, seeds + 1), progress=not as_json
@@ -784,11 +888,13 @@ def _register_commands():
     from .analyze import analyze
     from .criterion import criterion
     from .figures import figures
+    from .stick import stick
     from .study import study
 
     main.add_command(analyze)
     main.add_command(criterion)
     main.add_command(figures)
+    main.add_command(stick)
     main.add_command(study)
 
 

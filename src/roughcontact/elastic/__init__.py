@@ -1,5 +1,8 @@
-"""Elastic substrates: periodic FFT Green's functions (half-space, layers on a rigid base)."""
+"""Elastic substrates: periodic FFT Green's functions (half-space, layers on a rigid base),
+the free-boundary half-space (Hockney's zero padding), and the operator the solvers use."""
 
+from .free_boundary import free_compliance, love_rectangle, pixel_response
+from .operator import ElasticOperator, FourierMultipliers
 from .stiffness import (
     bonded_layer_stiffness,
     frictionless_layer_stiffness,
@@ -9,10 +12,15 @@ from .stiffness import (
 from .substrate import Substrate, wavevectors
 
 __all__ = [
+    "ElasticOperator",
+    "FourierMultipliers",
     "Substrate",
     "bonded_layer_stiffness",
+    "free_compliance",
     "frictionless_layer_stiffness",
     "half_space_stiffness",
+    "love_rectangle",
+    "pixel_response",
     "uniaxial_layer_stiffness",
     "wavevectors",
 ]

@@ -44,10 +44,20 @@ class Interaction(Protocol):
     * ``energy(g)``, ``pressure(g)``, ``curvature(g)`` -- V, -V', V'' per unit area;
     * ``classify(g)`` -- the (repulsive, attractive) masks.
 
-    Optional, read by name where a law has them (the registry's
-    :func:`~roughcontact.interactions.registry.law_parameters` collects them):
-    ``work_of_adhesion`` (w), ``range`` (Δr, ρ or δ), ``stiffness`` (k = V''(a0)),
-    ``core_stiffness`` and ``equilibrium_distance`` (a0, the gap of the energy minimum).
+    Required too, read directly by the solvers, with defaults on :class:`GapLaw` for a
+    law without them:
+
+    * ``equilibrium_distance`` -- a0, the gap of the energy minimum (length; the
+      Lennard-Jones walls), at which the undeformed surfaces first touch; default None:
+      a hard core, touching at g = 0 (the solvers take d0 = 0);
+    * ``range`` -- the law's range (length: Δr, ρ or δ; default None: no range
+      parameter, e.g. the untruncated 9-3 wall);
+    * ``work_of_adhesion`` -- w (pressure × length; default None);
+    * ``stiffness`` -- k = V''(a0) (pressure / length; default None).
+
+    Optional, read by name where a law has it (the registry's
+    :func:`~roughcontact.interactions.registry.law_parameters` collects the parameters):
+    ``core_stiffness`` (pressure / length; default None on :class:`GapLaw`).
 
     :class:`~roughcontact.interactions.HardWall` is the one law that is a constraint, not
     a potential: it provides ``name`` and ``adhesive`` only and the solvers treat it apart.
@@ -56,6 +66,10 @@ class Interaction(Protocol):
     name: str
     adhesive: bool
     hard_core: bool
+    equilibrium_distance: float | None
+    range: float | None
+    work_of_adhesion: float | None
+    stiffness: float | None
 
     @property
     def cutoff(self) -> float: ...
@@ -69,11 +83,41 @@ class Interaction(Protocol):
     def classify(self, gap): ...
 
 
+class _Default:
+    """The value of a law member that a law does not define itself (read on an instance).
+
+    A non-data descriptor, so the law's own value (a dataclass field, a property) wins.
+    On the class it is an AttributeError: a dataclass field of the same name without a
+    default of its own (``work_of_adhesion: float``) stays required.
+    """
+
+    def __init__(self, default):
+        self.default = default
+
+    def __set_name__(self, owner, name):
+        self.name = name
+
+    def __get__(self, instance, owner=None):
+        if instance is None:
+            raise AttributeError(self.name)
+        return self.default
+
+
 class GapLaw:
-    """Mixin: ``energy``/``pressure``/``curvature`` from one ``_evaluate(g) -> (V, V', V'')``."""
+    """Mixin: ``energy``/``pressure``/``curvature`` from one ``_evaluate(g) -> (V, V', V'')``.
+
+    Also the defaults of the :class:`Interaction` members a law may lack (see there):
+    None, so that the parameters a law records (the registry's ``law_parameters``, a
+    path's attributes) are the ones it has.
+    """
 
     hard_core: bool = False
     adhesive: ClassVar[bool] = True
+    equilibrium_distance = _Default(None)
+    range = _Default(None)
+    work_of_adhesion = _Default(None)
+    stiffness = _Default(None)
+    core_stiffness = _Default(None)
 
     def _evaluate(self, gap):  # pragma: no cover - abstract
         raise NotImplementedError

@@ -38,7 +38,7 @@ import numpy as np
 from .._validate import DPI, ParameterError
 from ..theory import pastewka_robbins as pr
 from . import _data as D
-from ._axes import decades, figure, log_axes, loglog
+from .axes import decades, figure, log_axes, loglog
 from .maps import figure1
 
 __all__ = ["figure1", "figure2", "figure3", "figure4", "save_figures"]

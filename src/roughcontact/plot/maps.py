@@ -14,6 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .._backend import to_numpy
 from .._validate import ParameterError
 from ._data import SURFACE_KEYS, la_label
 
@@ -33,11 +34,11 @@ def contact_masks(item, target_area=0.02):
     adhesion, ``""`` for an array); ``pixel_size`` is a0 in the path's length unit.
     """
     if isinstance(item, (str, Path)):
-        from ..analysis.path_analysis import load_path
+        from ..pathdata import read_path
 
-        item = load_path(item)
+        item = read_path(item)
     if not hasattr(item, "variables"):
-        p = np.asarray(item, dtype=float)
+        p = np.asarray(to_numpy(item), dtype=float)  # e.g. a result's pressure on a GPU
         if p.ndim != 2:
             raise ParameterError(
                 f"Fig. 1: a contact map must be a 2D pressure array, got shape {p.shape}"
@@ -161,20 +162,23 @@ def figure1(maps, *, labels=None, target_area=0.02, region=None):
 def study_maps(study_dir):
     """Path datasets for Fig. 1 from a study directory: one surface, every ℓa.
 
-    Of the task files (``task-*.nc``) that hold contact fields, those of the same
-    surface, substrate and seed (:data:`~._data.SURFACE_KEYS`) are grouped; the largest
-    group (the first on a tie) is returned, sorted by ℓa. An empty list when no task
-    file holds fields.
+    Of the task files (:func:`roughcontact.studies.store.task_files`) that hold contact
+    fields, those of the same surface, substrate and seed (:data:`~._data.SURFACE_KEYS`)
+    are grouped; the largest group (the first on a tie) is returned, sorted by ℓa. An
+    empty list when no task file holds fields.
     """
     import xarray as xr
 
+    from ..pathdata import read_path
+    from ..studies.store import task_files, task_parameters
+
     groups = {}
-    for path in sorted(Path(study_dir).glob("task-*.nc")):
+    for path in task_files(study_dir):
         try:
             with xr.open_dataset(path, engine="h5netcdf") as ds:
                 if "pressure" not in ds.variables and "gap" not in ds.variables:
                     continue
-                params = json.loads(ds.attrs.get("task_parameters", "{}"))
+                params = task_parameters(ds.attrs)
         except (OSError, ValueError):
             continue
         key = json.dumps({k: params.get(k) for k in SURFACE_KEYS}, sort_keys=True)
@@ -183,4 +187,4 @@ def study_maps(study_dir):
     if not groups:
         return []
     best = max(groups.values(), key=len)
-    return [xr.load_dataset(p, engine="h5netcdf") for _, p in sorted(best)]
+    return [read_path(p, check=False) for _, p in sorted(best)]

@@ -10,9 +10,15 @@ are the plain expressions. Both give the same values: same operations, same orde
 Sites: a set of grid sites is an index array on NumPy (``flatnonzero``; cheap gathers and
 scatters on a few per cent of the grid) and a boolean mask elsewhere (the array API has no
 integer-array assignment); ``x[sites]`` and ``x[sites] = v`` read the same either way.
+
+The patch: on a free boundary's work grid (:mod:`roughcontact.elastic.operator`) the
+interaction acts only on the sites of the patch; the site sets of the interaction
+(:meth:`Workspace.interacting`, :meth:`Workspace.band`) then never leave it.
 """
 
 from __future__ import annotations
+
+import math
 
 import numpy as np
 
@@ -28,17 +34,40 @@ class Workspace:
     ----------
     like : flat float array
         A field of the solve (its backend, device, size and dtype are used).
+    patch : flat bool array, optional
+        The sites where the interaction acts (the patch of a free boundary's work grid);
+        None (default): every site.
+
+    Attributes
+    ----------
+    patch : sites or None
+        The patch as sites (index array on NumPy, mask elsewhere); None: every site.
     """
 
-    def __init__(self, like):
+    def __init__(self, like, patch=None):
         self.xp = array_namespace(like)
         self.inplace = is_numpy_array(like)
         self.tmp = np.empty_like(like) if self.inplace else None
         self.dense_band = False  # whether the last band held more than 1/8 of the sites
+        self.patch_mask = patch
+        self.patch = None if patch is None else self.sites(patch)
 
     def sites(self, mask):
         """The sites where ``mask`` is true (index array on NumPy, the mask elsewhere)."""
         return np.flatnonzero(mask) if self.inplace else mask
+
+    def on_patch(self, sites):
+        """``sites`` without those off the patch (``sites`` itself when all are on it)."""
+        if self.patch_mask is None:
+            return sites
+        return sites[self.patch_mask[sites]] if self.inplace else sites & self.patch_mask
+
+    def interacting(self, gap, cutoff: float):
+        """Sites where a law of range ``cutoff`` acts at ``gap``: on the patch, with
+        ``gap < cutoff`` (None: every site, for an unbounded law without a patch)."""
+        if not math.isfinite(cutoff):
+            return self.patch
+        return self.on_patch(self.sites(gap < cutoff))
 
     def axpy(self, y, a: float, x):
         """``y += a * x`` in place; returns ``y``."""
@@ -80,7 +109,13 @@ class Workspace:
 
     def band(self, gap, s, reach: float, cutoff: float):
         """Sites where ``min(gap, gap + reach s) < cutoff``: all that can feel a law
-        of range ``cutoff`` along ``gap + alpha s`` for ``0 <= alpha <= reach``."""
+        of range ``cutoff`` along ``gap + alpha s`` for ``0 <= alpha <= reach`` (on the
+        patch)."""
+        if self.patch_mask is not None:
+            return self.on_patch(self._band(gap, s, reach, cutoff))
+        return self._band(gap, s, reach, cutoff)
+
+    def _band(self, gap, s, reach, cutoff):
         if not self.inplace:
             return self.xp.minimum(gap, gap + reach * s) < cutoff
         if not self.dense_band:

@@ -12,17 +12,10 @@ from __future__ import annotations
 import math
 
 from .._backend import array_device, array_namespace, dtype_name, to_numpy
-from ._ops import (
-    JOINING_KEEPS_DIRECTIONS,
-    POINT_CORRECTIONS,
-    ReliableUpdates,
-    StallGuard,
-    StepKind,
-    dot,
-    point_response,
-    stopping,
-    total,
-)
+from .fourier import point_response
+from .loop_control import ReliableUpdates, StallGuard, stopping
+from .pk_rules import JOINING_KEEPS_DIRECTIONS, POINT_CORRECTIONS, StepKind
+from .reductions import dot, total
 from .result import SolveStatus
 
 
@@ -34,18 +27,20 @@ class _RollKernel:
     """Response of the substrate to unit point forces, as rolled copies of one response."""
 
     def __init__(self, substrate, hf):
-        self.g0 = point_response(substrate, hf)
+        self.g0 = point_response(substrate, hf)  # on the work grid
         self.shape = substrate.shape
+        self.crop = substrate.crop
 
     def add(self, s, changed, coeffs):
-        """``s + sum_j coeffs[j] G(x - x_j)`` over the sites where ``changed`` (periodic)."""
+        """``s + sum_j coeffs[j] G(x - x_j)`` over the sites where ``changed`` (G rolled
+        on the work grid, periodic or Hockney's padded one, and cropped to the patch)."""
         xp = array_namespace(s)
         sites = xp.nonzero(changed)[0]
         values = to_numpy(xp.take(coeffs, sites)).tolist()  # a few scalars to the host
         s2 = xp.reshape(s, self.shape)
         for site, value in zip(to_numpy(sites).tolist(), values, strict=True):
             shift = divmod(site, self.shape[1])
-            s2 = s2 + value * xp.roll(self.g0, shift, axis=(0, 1))
+            s2 = s2 + value * self.crop(xp.roll(self.g0, shift, axis=(0, 1)))
         return xp.reshape(s2, (-1,))
 
 

@@ -12,16 +12,10 @@ import math
 import numpy as np
 
 from .._backend import dtype_name
-from ._ops import (
-    JOINING_KEEPS_DIRECTIONS,
-    POINT_CORRECTIONS,
-    ReliableUpdates,
-    StallGuard,
-    StepKind,
-    point_response,
-    stopping,
-)
-from ._ops import dot as _dot
+from .fourier import point_response
+from .loop_control import ReliableUpdates, StallGuard, stopping
+from .pk_rules import JOINING_KEEPS_DIRECTIONS, POINT_CORRECTIONS, StepKind
+from .reductions import dot as _dot
 from .result import SolveStatus
 
 __all__ = ["iterate_sparse"]
@@ -34,25 +28,27 @@ def _subtract_heights(u, hf):
 
 class _PointKernel:
     """Response of the substrate to unit point forces, added in real space (the response
-    to one force, :func:`._ops.point_response`, made on the first :meth:`add`: many solves
-    never need it)."""
+    to one force, :func:`.fourier.point_response`, made on the first :meth:`add`: many
+    solves never need it)."""
 
     def __init__(self, substrate, dtype):
         self.substrate, self.dtype, self.shape = substrate, dtype, substrate.shape
         self.g0 = None
 
     def add(self, s_flat, sites, coeffs):
-        """s += sum_j coeffs[j] * G(x - x_j), periodic."""
+        """s += sum_j coeffs[j] * G(x - x_j) on the patch; G is stored on the work grid
+        at separation ``(x - x_j) mod work_shape`` (periodic, or Hockney's padded grid)."""
         if self.g0 is None:
             self.g0 = point_response(self.substrate, np.empty(0, dtype=self.dtype))
         nx, ny = self.shape
+        mx, my = self.g0.shape
         s2, g0 = s_flat.reshape(self.shape), self.g0
         for site, c in zip(sites.tolist(), coeffs.tolist(), strict=True):
             i, j = divmod(site, ny)
             s2[i:, j:] += c * g0[: nx - i, : ny - j]
-            s2[i:, :j] += c * g0[: nx - i, ny - j :]
-            s2[:i, j:] += c * g0[nx - i :, : ny - j]
-            s2[:i, :j] += c * g0[nx - i :, ny - j :]
+            s2[i:, :j] += c * g0[: nx - i, my - j :]
+            s2[:i, j:] += c * g0[mx - i :, : ny - j]
+            s2[:i, :j] += c * g0[mx - i :, my - j :]
 
 
 def iterate_sparse(p, pb, substrate):

@@ -32,6 +32,11 @@ projected steps (their energy test needs the exact ``K w``).
 The result's ``pressure`` is the surface traction: the interaction pressure on free
 sites, the elastic pressure (reaction plus adhesion) on the wall. Repulsive sites are
 those where it is > 0 (only wall sites), attractive those where it is < 0.
+
+A free boundary (``Substrate(..., periodic=False)``): as in :mod:`.smooth`, the
+deflection lives on the zero-padded work grid and the interaction and the wall act on the
+patch only (no bound on the padding, whose sites are free and carry no pressure at
+equilibrium).
 """
 
 from __future__ import annotations
@@ -44,24 +49,22 @@ from .._backend import (
     array_namespace,
     computes_on_heights_device,
     dtype_name,
-    to_numpy,
 )
-from .._validate import ParameterError
-from ._ops import (
-    ReliableUpdates,
-    StallGuard,
-    check_hard_wall_offset,
-    check_problem,
+from ._inplace import Workspace
+from .fourier import (
     compliance_operator,
     in_single_precision,
+    on_work_grid,
+    patch_sites,
     stiffness_operator,
-    stopping,
-    total,
 )
-from ._ops import dot as _dot
+from .inputs import check_hard_wall_offset, check_problem, warm_deflection
+from .line_search import line_minimum
+from .loop_control import ReliableUpdates, StallGuard, stopping
 from .observables import make_result
+from .reductions import dot as _dot
+from .reductions import total
 from .result import SolveStatus
-from .smooth import _line_minimum
 
 __all__ = ["minimize_energy_bounded", "project_feasible"]
 
@@ -117,12 +120,13 @@ def minimize_energy_bounded(
     ----------
     heights : (nx, ny) array
         Rigid surface heights (length).
-    substrate : Substrate
+    substrate : Substrate (or any :class:`~roughcontact.elastic.operator.ElasticOperator`)
     interaction : hard-core law (``hard_core = True``), e.g. Exponential, MaugisDugdale
     offset : float
         Offset ``d`` (length); gap ``g = d - h + w >= 0``.
     initial : ContactResult or array, optional
-        Warm start (its deflection, projected onto the feasible set).
+        Warm start (its deflection, projected onto the feasible set; on a free boundary
+        as for :func:`.smooth.minimize_energy`).
     tol : float, optional
         Tolerance on the largest free-site force imbalance / E*.
         Default 1e-8 (float64) or 1e-6 (float32, also the smallest allowed there).
@@ -143,36 +147,46 @@ def minimize_energy_bounded(
     t_start = time.perf_counter()
     h, tol = check_problem(heights, substrate, tol, offset, device, dtype)
     offset = float(offset)
-    shape, n = h.shape, h.size
+    shape = h.shape
     es = substrate.contact_modulus
     rigid = substrate.rigid_mean
     xp = array_namespace(h)
     hf = xp.reshape(h, (-1,))
-    base = offset - hf  # gap = base + w
-    lower = -base
+    # the variable lives on the work grid (the patch itself unless the boundary is free)
+    base = on_work_grid(substrate, offset - h)  # gap = base + w
+    n = base.shape[0]
+    patch = patch_sites(substrate, h)  # None: every site is on the patch
+    work = None if patch is None else Workspace(base, patch)
+    lower = -base if patch is None else xp.where(patch, -base, -math.inf)  # no wall off it
     check_hard_wall_offset(h, substrate, offset)
     # single precision for what only steers (the preconditioner) or updates K w by
     # increments (K s); exact float64 K w on projected steps and as ReliableUpdates says
-    green = in_single_precision(compliance_operator(substrate))
-    stiff = stiffness_operator(substrate)
+    green = in_single_precision(compliance_operator(substrate, work_grid=True))
+    stiff = stiffness_operator(substrate, work_grid=True)
     stiff_single = in_single_precision(stiff)
     scale = float(xp.std(hf)) or substrate.pixel_size
     on_wall_tol = 1e-12 * scale
 
+    def on_patch(x):
+        return x if work is None else x[work.patch]
+
+    def law(evaluate, gap_):
+        """The interaction's ``evaluate`` on the patch, zero on the padding."""
+        if work is None:
+            return evaluate(gap_)
+        out = xp.zeros_like(gap_)
+        out[work.patch] = evaluate(gap_[work.patch])
+        return out
+
     if initial is not None:
-        w0 = getattr(initial, "deflection", initial)
-        w0 = w0 if xp is array_namespace(w0) else to_numpy(w0)
-        w0 = xp.asarray(w0, device=array_device(h), copy=True)
-        w0 = xp.reshape(xp.astype(w0, h.dtype), (-1,))
-        if w0.size != n:
-            raise ParameterError(f"initial must have the substrate's shape {substrate.shape}")
+        w0 = warm_deflection(initial, substrate, h, compliance_operator(substrate, work_grid=True))
     else:
         w0 = xp.zeros(n, dtype=h.dtype, device=array_device(h))
     w = project_feasible(w0 - xp.mean(w0) if rigid else w0, lower, rigid)
     kw = stiff(w)
 
     def energy(w_, kw_):
-        return 0.5 * _dot(w_, kw_) + total(interaction.energy(base + w_))
+        return 0.5 * _dot(w_, kw_) + total(interaction.energy(on_patch(base + w_)))
 
     e_cur = energy(w, kw)
     s = ks = z_old = None
@@ -184,9 +198,11 @@ def minimize_energy_bounded(
     free = xp.ones(n, dtype=xp.bool, device=array_device(h))
     while True:
         gap = base + w
-        p_int = interaction.pressure(gap)
+        p_int = law(interaction.pressure, gap)
         r = kw - p_int
         on_wall = gap <= on_wall_tol
+        if patch is not None:
+            on_wall = on_wall & patch
         if rigid:
             away = ~on_wall
             mu = float(xp.mean(r[away])) if xp.any(away) else float(xp.mean(r))
@@ -233,12 +249,12 @@ def minimize_energy_bounded(
             s, slope0 = -z, -gz
         z_old, gz_old, active_old = z, gz, active
         ks = stiff_single(s)
-        alpha = _line_minimum(interaction, gap, s, kw, ks, slope0)
+        alpha = line_minimum(interaction, gap, s, kw, ks, slope0, work=work)
         if not math.isfinite(alpha):
             status = SolveStatus.LINE_SEARCH_FAILED
             message = f"line search failed at iteration {it}"
             break
-        crossing = s < 0
+        crossing = s < 0 if patch is None else (s < 0) & patch
         alpha_max = float(xp.min(-gap[crossing] / s[crossing])) if xp.any(crossing) else math.inf
         if alpha <= alpha_max:
             w += alpha * s
@@ -266,13 +282,13 @@ def minimize_energy_bounded(
         s = None  # the face changed: restart the conjugate directions
 
     gap = base + w
-    p_int = interaction.pressure(gap)
-    traction = xp.where(free, p_int, kw - mu)
+    p_int = law(interaction.pressure, gap)
+    traction = on_patch(xp.where(free, p_int, kw - mu))  # none on the padding
     return make_result(
         h,
         substrate,
         xp.reshape(traction, shape),
-        xp.reshape(w, shape),
+        xp.reshape(on_patch(w), shape),
         offset,
         it,
         residual,

@@ -23,8 +23,9 @@ import math
 import time
 
 from .._backend import array_namespace, dtype_name
-from ._ops import check_problem, false_position, illinois, lowest_hard_wall_offset
+from .inputs import check_problem, lowest_hard_wall_offset
 from .result import SolveStatus
+from .roots import false_position, illinois
 
 __all__ = ["solve_at_load"]
 
@@ -67,6 +68,13 @@ def solve_at_load(
         states[d] = res
         return res
 
+    def keep_only(*offsets):
+        # the states warm-start later solves where they are (on a GPU: device memory); the
+        # next offset lies beyond d_a (bracketing) or inside [d_a, d_b] (regula falsi), so
+        # no other state can be the nearest one: drop them, holding at most two
+        for d in [d for d in states if d not in offsets]:
+            del states[d]
+
     def finish(res, converged, message):
         # an inner solve that failed keeps its own status and message
         if not res.converged:
@@ -85,7 +93,7 @@ def solve_at_load(
     if initial is not None and hasattr(initial, "offset"):
         d_a = float(initial.offset)
     else:
-        d_a = float(xp.max(h)) + getattr(interaction, "equilibrium_distance", 0.0)
+        d_a = float(xp.max(h)) + (interaction.equilibrium_distance or 0.0)  # None: hard core
     res_a = evaluate(d_a)
     f_a = res_a.load - load
     if not res_a.converged or abs(f_a) <= load_tol:
@@ -97,6 +105,7 @@ def solve_at_load(
     # everywhere): approach that bound by halving instead
     lowest = lowest_hard_wall_offset(h, substrate) if interaction.hard_core else -math.inf
     for _ in range(60):
+        keep_only(d_a)
         d_b = d_a + direction * step
         near_bound = d_b <= lowest
         if near_bound:
@@ -123,6 +132,7 @@ def solve_at_load(
         return finish(res_b, False, f"load {load:g} not bracketed by offsets up to {d_b:g}")
     side = 0
     for _ in range(200):
+        keep_only(d_a, d_b)
         d = false_position(d_a, f_a, d_b, f_b)
         res = evaluate(d)
         f = res.load - load

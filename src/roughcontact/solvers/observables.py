@@ -4,9 +4,15 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._backend import to_numpy
+from .._backend import array_namespace
 from ..analysis.contact_geometry import perimeter_edges
 from .result import ContactResult, SolveStatus
+
+
+def _sum64(x) -> float:
+    """Sum of ``x`` accumulated in float64, also for float32 fields (single precision)."""
+    xp = array_namespace(x)
+    return float(xp.sum(x, dtype=xp.float64))
 
 
 def make_result(
@@ -29,35 +35,31 @@ def make_result(
 
     ``status`` (a :class:`SolveStatus`) gives ``converged``.
 
-    Fields of any backend are copied to host NumPy here, once per solve (the record is
-    an edge: files, analysis, plots).
+    The fields stay on the heights' backend and device (no copy to the host: a path on a
+    GPU warm-starts each step from the last one there); the scalars are reduced there
+    and only they reach the host. :meth:`ContactResult.to_numpy` is the edge.
     """
-    heights, pressure, deflection = (to_numpy(a) for a in (heights, pressure, deflection))
-    if repulsive is not None:
-        repulsive = to_numpy(repulsive)
-    if attractive is not None:
-        attractive = to_numpy(attractive)
+    xp = array_namespace(pressure)
     n = pressure.size
     gap = offset - heights + deflection
     if repulsive is None:
         repulsive = pressure > 0
     if attractive is None:
-        attractive = np.zeros_like(repulsive)
-    # accumulated in float64 also for float32 fields (the single-precision option)
-    rep_load = float(pressure[repulsive].sum(dtype=np.float64)) / n
-    att_load = -float(pressure[attractive].sum(dtype=np.float64)) / n
+        attractive = xp.zeros_like(repulsive)
+    rep_load = _sum64(pressure[repulsive]) / n
+    att_load = -_sum64(pressure[attractive]) / n
     edges = perimeter_edges(repulsive)
     a0 = substrate.pixel_size
     return ContactResult(
         offset=float(offset),
-        load=float(pressure.sum(dtype=np.float64)) / n,
+        load=_sum64(pressure) / n,
         repulsive_load=rep_load,
         attractive_load=att_load,
-        repulsive_area=float(np.count_nonzero(repulsive)) / n,
-        attractive_area=float(np.count_nonzero(attractive)) / n,
+        repulsive_area=float(xp.count_nonzero(repulsive)) / n,
+        attractive_area=float(xp.count_nonzero(attractive)) / n,
         perimeter=edges * np.pi / 4 * a0 / substrate.nominal_area,
         perimeter_edges=edges,
-        mean_gap=float(gap.mean(dtype=np.float64)),
+        mean_gap=_sum64(gap) / n,
         iterations=int(iterations),
         residual=float(residual),
         converged=status is SolveStatus.CONVERGED,

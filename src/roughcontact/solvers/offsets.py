@@ -9,17 +9,19 @@ first touches (gap ``g = d - max(h)`` equal to the law's equilibrium distance ``
 hard-core laws (hard wall, exponential, Maugis-Dugdale). Offsets given relative to it are
 in units of length, of the surface's rms height, or as a bearing-area fraction (see
 :func:`relative_offsets`). The single owner of this convention: the studies'
-``[path] unit`` and ``roughcontact path --offset-unit`` both use it.
+``[path] unit`` and ``roughcontact path --offset-unit`` both use it; and of the stepped
+ranges ``START STOP STEP`` of both (:func:`stepped_values`).
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from .._backend import to_numpy
-from .._validate import ParameterError
+from .._backend import array_namespace, to_numpy
+from .._validate import MAX_PATH_STEPS, ParameterError
+from ..interactions.hardwall import HardWall
 
-__all__ = ["OFFSET_UNITS", "first_contact_offset", "relative_offsets"]
+__all__ = ["OFFSET_UNITS", "first_contact_offset", "relative_offsets", "stepped_values"]
 
 #: The units of :func:`relative_offsets`.
 OFFSET_UNITS = ("length", "rms_height", "bearing_area")
@@ -32,7 +34,10 @@ def _host_heights(heights) -> np.ndarray:
 
 
 def _equilibrium_distance(interaction) -> float:
-    return float(getattr(interaction, "equilibrium_distance", 0.0) or 0.0)
+    """d0 (length): a0 of the Lennard-Jones walls; 0 for the hard wall and hard cores."""
+    if interaction is None or isinstance(interaction, HardWall):
+        return 0.0
+    return float(interaction.equilibrium_distance or 0.0)
 
 
 def first_contact_offset(heights, interaction=None) -> float:
@@ -49,9 +54,12 @@ def first_contact_offset(heights, interaction=None) -> float:
     Returns
     -------
     float
-        ``max(h) + d0`` (length).
+        ``max(h) + d0`` (length); the maximum is taken on the heights' device.
     """
-    return float(_host_heights(heights).max()) + _equilibrium_distance(interaction)
+    from .._validate import heights2d
+
+    h = heights2d("heights", heights)
+    return float(array_namespace(h).max(h)) + _equilibrium_distance(interaction)
 
 
 def relative_offsets(heights, values, unit="length", interaction=None, pixel_size=1.0):
@@ -113,3 +121,51 @@ def relative_offsets(heights, values, unit="length", interaction=None, pixel_siz
         return d0 + np.quantile(h, 1.0 - v)  # the undeformed surfaces overlap on v
     scale = rms_height(h, pixel_size=pixel_size) if unit == "rms_height" else 1.0
     return float(h.max()) + d0 + scale * v
+
+
+def stepped_values(start, stop, step, *, name="the path"):
+    """``start, start ± |step|, ...`` up to ``stop`` (inclusive): a stepped path's values.
+
+    Parameters
+    ----------
+    start, stop : float
+        The first value and the last one (reached when ``|stop - start|/|step|`` is an
+        integer to within 1e-9, so that decimal steps such as 0.1 hit it); any unit
+        (offsets: length or ``unit``; loads: pressure).
+    step : float
+        Non-zero; its sign is ignored (the values go from ``start`` towards ``stop``).
+    name : str
+        How messages name the three numbers (``"--offsets"``, ``"[path]"``).
+
+    Returns
+    -------
+    numpy.ndarray
+        float64 ``start + sign(stop - start) |step| k``, ``k = 0 ... floor(|stop - start|
+        / |step| + 1e-9)``; ``[start]`` when ``stop == start``.
+
+    Raises
+    ------
+    ParameterError
+        For non-finite numbers, a zero step, or more than
+        :data:`~roughcontact._validate.MAX_PATH_STEPS` values.
+    """
+    try:
+        start, stop, step = float(start), float(stop), float(step)
+    except (TypeError, ValueError):
+        raise ParameterError(
+            f"{name} START STOP STEP must be numbers, got {start!r} {stop!r} {step!r}"
+        ) from None
+    if not all(np.isfinite(v) for v in (start, stop, step)):
+        raise ParameterError(
+            f"{name} START STOP STEP must be finite numbers, got {start:g} {stop:g} {step:g}"
+        )
+    if step == 0:
+        raise ParameterError(f"{name} STEP must be non-zero")
+    span = abs(stop - start) / abs(step)
+    if not span < MAX_PATH_STEPS:
+        raise ParameterError(
+            f"{name} {start:g} {stop:g} {step:g} gives more than {MAX_PATH_STEPS} steps "
+            f"(accepted: at most {MAX_PATH_STEPS}); use a larger STEP"
+        )
+    count = int(np.floor(span + 1e-9)) + 1
+    return start + np.sign(stop - start or 1) * abs(step) * np.arange(count)

@@ -9,13 +9,15 @@ import numpy as np
 
 from .._backend import (
     array_device,
+    array_namespace,
     computes_on_heights_device,
     dtype_name,
     to_device,
     to_numpy,
 )
 from .._validate import ParameterError, step_indices, step_list
-from ..analysis.contact_geometry import contact_patches
+from ..analysis.contact_geometry import count_patches
+from ..pathdata import path_dataset
 from .result import STATE_SCALARS, SolveStatus
 from .solve import solve
 
@@ -86,9 +88,9 @@ def approach_retract(
         largest change of the deflection exceeds ``jump_factor`` times the change of
         the offset plus half the interaction's range (Δr, ρ, δ; a0 for the untruncated
         LJ wall); the non-adhesive hard wall has no instabilities. Sites at the edge of
-        a growing contact move by more than |Δd| on a stable branch too, but not by a
+        a growing contact move by more than ``|Δd|`` on a stable branch too, but not by a
         sizeable fraction of the range unless the state jumps: on a stable branch the
-        contact sites follow the rigid surface (|Δw| ≈ |Δd|) while a jump moves parts of
+        contact sites follow the rigid surface (``|Δw| ≈ |Δd|``) while a jump moves parts of
         the substrate by the interaction range or more.
     progress : callable, optional
         ``progress(step, n_steps, result)`` after every step (e.g. a progress bar).
@@ -112,7 +114,8 @@ def approach_retract(
         Indexed by ``step``: offset, load, repulsive/attractive load and area, mean gap,
         perimeter, corrected_repulsive_area (Yastrebov et al. 2017), iterations,
         residual, converged, status (the :class:`SolveStatus` value), solve_seconds,
-        repulsive_patches (number of connected repulsive patches, periodic), branch
+        repulsive_patches (number of connected repulsive patches, periodic unless the
+        substrate has a free boundary), branch
         ("approach"/"retract"),
         jump; ``heights`` (dims ``x``, ``y``: the rigid surface's heights h, length,
         float64 on the host). Attrs: the provenance of :func:`provenance` (surface
@@ -159,7 +162,10 @@ def approach_retract(
             r["repulsive_area"] >= until_area for r in rows[: plan.approach_steps or None]
         )
         extra = {"until_area_reached": int(reached)}
-        return _dataset(rows, plan.branch, plan.fields, control, t0, attrs | extra, host_heights)
+        return path_dataset(
+            rows, plan.branch, plan.fields, control, attrs | extra, host_heights,
+            total_seconds=time.perf_counter() - t0,
+        )  # fmt: skip
 
     step = 0
     while step < plan.size:
@@ -175,11 +181,14 @@ def approach_retract(
                 raise PathError(why, dataset())
             row = {k: getattr(res, k) for k in STATE_SCALARS}
             row["status"] = res.status.value
-            row["repulsive_patches"] = int(contact_patches(res.pressure > 0)[1].size)
+            periodic = getattr(substrate, "periodic", True)  # a free boundary: no wrap
+            # counted on the device: a step copies no field to the host (only fields_at)
+            row["repulsive_patches"] = count_patches(res.pressure > 0, periodic=periodic)
             if previous is None:
                 row["jump"] = False
             else:
-                dw = float(np.abs(res.deflection - previous.deflection).max())
+                xp = array_namespace(res.deflection)
+                dw = float(xp.max(xp.abs(res.deflection - previous.deflection)))
                 dd = abs(res.offset - previous.offset)
                 row["jump"] = bool(dw > jump_factor * dd + jump_length)
             rows.append(row)
@@ -259,22 +268,28 @@ class _Plan:
         self._wanted |= {self.size + i for i in self.requested if -self.size <= i < 0}
         for s, arrays in self._held.items():
             if s in self._wanted:
-                self.fields[s] = arrays
+                self.fields[s] = _on_host(arrays)
         self._held = {}
 
     def keep(self, step, arrays):
+        """Keep the fields of ``step`` if asked for: on the host; held ones where they are."""
         if step in self._wanted:
-            self.fields[step] = arrays
+            self.fields[step] = _on_host(arrays)
         elif self.approach_steps is None and self._depth:
             self._held[step] = arrays
             self._held.pop(step - self._depth, None)
 
 
+def _on_host(arrays):
+    """NumPy copies of a step's fields, for the dataset (the only fields that leave the device)."""
+    return tuple(to_numpy(a) for a in arrays)
+
+
 def _jump_length(interaction) -> float:
     """Half the distance over which the law attracts: the scale of a snap (length)."""
-    if interaction is None or not getattr(interaction, "adhesive", True):
+    if interaction is None or not interaction.adhesive:
         return math.inf  # the hard wall: every non-adhesive path is stable
-    scale = getattr(interaction, "range", None) or interaction.equilibrium_distance
+    scale = interaction.range or interaction.equilibrium_distance
     return 0.5 * float(scale)
 
 
@@ -283,10 +298,10 @@ def provenance(heights, substrate, interaction) -> dict:
 
     Surface statistics (spectral h_rms, h'rms, h''rms, d_rep = 4h'rms/h''rms, the
     shortest wavelength present), the substrate (E*, a0, grid, thickness (inf for a
-    half-space), ν, base ("" for a half-space): ``Substrate(grid, contact_modulus=...,
-    pixel_size=..., thickness=None if inf, poisson=..., base=base or "bonded")`` rebuilds
-    it) and the interaction's parameters, each under its own key (units as in the rest
-    of the API).
+    half-space), ν, base ("" for a half-space), periodic (0 for a free boundary):
+    ``Substrate(grid, contact_modulus=..., pixel_size=..., thickness=None if inf,
+    poisson=..., base=base or "bonded", periodic=bool(periodic))`` rebuilds it) and the
+    interaction's parameters, each under its own key (units as in the rest of the API).
     """
     from .. import __version__
     from ..surfaces.statistics import short_cutoff_estimate, statistics
@@ -306,7 +321,8 @@ def provenance(heights, substrate, interaction) -> dict:
         "thickness": math.inf if substrate.thickness is None else substrate.thickness,
         "poisson": substrate.poisson,
         "base": "" if substrate.thickness is None else substrate.base,
-        "interaction_name": getattr(interaction, "name", "hardwall"),
+        "periodic": int(getattr(substrate, "periodic", True)),  # 0: free boundary
+        "interaction_name": "hardwall" if interaction is None else interaction.name,
         "interaction": repr(interaction),
         "substrate": repr(substrate),
         "roughcontact_version": __version__,
@@ -325,36 +341,3 @@ _LAW_PARAMETERS = (
     "equilibrium_distance",
     "core_stiffness",
 )
-
-
-def _dataset(rows, branch, fields, control, t0, attrs, heights):
-    import xarray as xr
-
-    n = len(rows)
-    columns = (*STATE_SCALARS, "repulsive_patches", "jump")
-    data = {k: ("step", np.array([r[k] for r in rows]) if n else np.zeros(0)) for k in columns}
-    data["branch"] = ("step", np.array(branch[:n], dtype=str))
-    data["status"] = ("step", np.array([r["status"] for r in rows], dtype=str))
-    ds = xr.Dataset(data, coords={"step": np.arange(n)})
-    if fields:
-        steps = sorted(fields)
-        ds = ds.assign_coords(field_step=steps)
-        for i, name in enumerate(("pressure", "gap", "deflection")):
-            ds[name] = (("field_step", "x", "y"), np.stack([fields[s][i] for s in steps]))
-    ds["heights"] = (("x", "y"), heights)
-    retract = [r for r, b in zip(rows, branch, strict=False) if b == "retract"]
-    separated = bool(retract) and retract[-1]["repulsive_area"] == 0
-    # not measured unless the retraction left the repulsive contact behind
-    pull_off = max(0.0, -min(r["load"] for r in retract)) if separated else math.nan
-    ds.attrs.update(
-        {
-            "control": control,
-            "pull_off": pull_off,
-            "separated": int(separated),
-            "all_converged": int(all(r["converged"] for r in rows)),
-            "total_seconds": time.perf_counter() - t0,
-            **attrs,
-            "units": "lattice units unless given: loads and areas per nominal area A0",
-        }
-    )
-    return ds

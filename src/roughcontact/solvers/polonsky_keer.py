@@ -2,7 +2,10 @@ r"""Constrained conjugate gradients for the non-adhesive hard wall.
 
 Minimises the complementary energy :math:`\tfrac12 p^T G p - p^T (h - d)` over
 pressures :math:`p \ge 0` (Polonsky & Keer, Wear 231, 206 (1999)), where ``G`` is the
-substrate's periodic Green's function applied by FFT. Under load control the mean
+substrate's Green's function applied by FFT: periodic, or on a free boundary the exact
+free-space one of Hockney's zero-padded grid, cropped to the patch
+(:mod:`roughcontact.elastic.operator`); the preconditioner's ``K`` is then the padded
+grid's stiffness restricted to the patch. Under load control the mean
 pressure is held at the requested load and the offset ``d`` is the Lagrange multiplier
 of that constraint; under displacement control ``d`` is given.
 
@@ -35,10 +38,10 @@ could stall or cycle until the iteration cap):
   ``-tau g`` of a plain step; with preconditioned steps these sites instead join the
   set the step acts on, so their pressure comes from ``z`` and the line minimisation
   (a site-local pressure overshoots when a whole region interpenetrates). When they are
-  few (:data:`._ops.JOINING_KEEPS_DIRECTIONS`) the conjugate directions are kept.
+  few (:data:`.pk_rules.JOINING_KEEPS_DIRECTIONS`) the conjugate directions are kept.
 * If a preconditioned step ever clips every loaded site (all contact lost), the solve
   restarts with plain steps, so that it cannot repeat the same path, until the residual
-  is below :data:`._ops.RESUME_PRECONDITIONING` of its value before the loss.
+  is below :data:`.pk_rules.RESUME_PRECONDITIONING` of its value before the loss.
 
 Nested iteration (default on, ``nested=True``): a cold solve on a grid of at least
 :data:`NESTED_MIN_SIZE` points with even sides starts from the same problem solved on the
@@ -60,7 +63,7 @@ costs 0.4-0.7 of a float64 one), with "reliable updates" (Sleijpen & van der
 Vorst, Computing 56, 141 (1996)). The step and correction convolutions only ever update
 ``G p - h`` incrementally, so their rounding (~1e-7 of the increment) accumulates to
 ~1e-7 of the distance travelled since the last exact evaluation. That evaluation, one
-float64 convolution of the whole pressure, is redone as :class:`._ops.ReliableUpdates`
+float64 convolution of the whole pressure, is redone as :class:`.loop_control.ReliableUpdates`
 says (the residual fell 1000-fold, 50 iterations passed, or the tolerance is met), so
 convergence is only ever declared on an exact state: the answer is as accurate as a
 float64 solve (tested down to tol 1e-12 against an independent float64 deflection).
@@ -74,12 +77,9 @@ GPU does full-grid passes at memory bandwidth. Both take the same steps (tested)
 
 from __future__ import annotations
 
-import dataclasses
 import math
 import time
 from dataclasses import dataclass
-
-import numpy as np
 
 from .._backend import (
     array_device,
@@ -90,15 +90,10 @@ from .._backend import (
     to_numpy,
 )
 from .._validate import ParameterError
-from ._ops import (
-    check_hard_wall_offset,
-    check_problem,
-    compliance_operator,
-    in_precision,
-    stiffness_operator,
-)
 from ._pk_dense import iterate_dense
 from ._pk_sparse import iterate_sparse
+from .fourier import compliance_operator, in_precision, stiffness_operator
+from .inputs import check_hard_wall_offset, check_problem
 from .observables import make_result
 from .result import SolveStatus
 
@@ -115,11 +110,11 @@ NESTED_TOL = 1e-3
 def _coarse_guess(h, substrate, load, offset, max_iter, precondition):
     """Pressure on ``h``'s grid from the problem on the grid coarsened 2×2, or None.
 
-    The coarse heights are 2×2 block means on a substrate with twice the pixel size (the
-    same continuum problem at half the resolution; block means keep mean(h), hence the
+    The coarse heights are 2×2 block means on the substrate's ``coarsened()`` twin, with
+    twice the pixel size (the same continuum problem at half the resolution; a free
+    boundary stays free; block means keep mean(h), hence the
     admissible offsets), the coarse pressure is copied to the four fine sites of each
-    block (and rescaled to the load by :func:`_initial_pressure`, which also moves it to
-    the heights' device).
+    block (and rescaled to the load by :func:`_initial_pressure`), on the heights' device.
     """
     nx, ny = h.shape
     if nx * ny < NESTED_MIN_SIZE or nx % 2 or ny % 2:
@@ -127,13 +122,13 @@ def _coarse_guess(h, substrate, load, offset, max_iter, precondition):
     xp = array_namespace(h)
     mx, my = nx // 2, ny // 2
     coarse = xp.mean(xp.reshape(h, (mx, 2, my, 2)), axis=(1, 3))
-    sub = dataclasses.replace(substrate, shape=(mx, my), pixel_size=2 * substrate.pixel_size)
+    sub = substrate.coarsened()
     res = polonsky_keer(
         coarse, sub, load=load, offset=offset, tol=NESTED_TOL, max_iter=max_iter,
         precondition=precondition, dtype=dtype_name(h),
     )  # fmt: skip
-    p = to_numpy(res.pressure).reshape(mx, 1, my, 1)  # results live on the host
-    return np.broadcast_to(p, (mx, 2, my, 2)).reshape(nx, ny)
+    p = xp.reshape(res.pressure, (mx, 1, my, 1))  # results stay on the heights' device
+    return xp.reshape(xp.broadcast_to(p, (mx, 2, my, 2)), (nx, ny))
 
 
 def _initial_pressure(initial, heights, substrate, load, offset):
@@ -183,7 +178,7 @@ def polonsky_keer(
     ----------
     heights : (nx, ny) array
         Rigid surface heights ``h`` (length; summits point at the substrate).
-    substrate : Substrate
+    substrate : Substrate (or any :class:`~roughcontact.elastic.operator.ElasticOperator`)
     load : float, optional
         Mean pressure :math:`N/A_0 \\ge 0` (pressure units). Exactly one of load/offset.
     offset : float, optional

@@ -2,11 +2,11 @@
 
 from __future__ import annotations
 
+import dataclasses
 import enum
 from dataclasses import dataclass, field
 
-import numpy as np
-
+from .._backend import is_numpy_array, to_numpy
 from ..analysis.contact_geometry import AREA_CORRECTION_PER_EDGE
 
 __all__ = ["STATE_SCALARS", "ContactResult", "SolveStatus"]
@@ -60,8 +60,8 @@ STATE_SCALARS = (
 class ContactResult:
     """One solved contact state (the README's conventions, lattice units unless given).
 
-    Fields
-    ------
+    Attributes
+    ----------
     offset : float
         Offset ``d`` of the rigid surface (length); gap ``g = d - h + w``.
     load : float
@@ -78,8 +78,10 @@ class ContactResult:
         The raw nearest-neighbour edge count.
     mean_gap : float
         Mean of the gap over the nominal area (length).
-    pressure, gap, deflection : ndarray
-        Fields on the grid (pressure units, length, length).
+    pressure, gap, deflection : array
+        Fields on the grid (pressure units, length, length), arrays of the heights'
+        backend on their device (CuPy arrays for heights on a GPU): a warm start from
+        this record copies nothing. :meth:`to_numpy` gives the record with NumPy fields.
     iterations : int
         Iterations the solver took.
     residual : float
@@ -116,15 +118,26 @@ class ContactResult:
     pixel_size: float
     tol: float
     solver: str
-    pressure: np.ndarray = field(repr=False)
-    gap: np.ndarray = field(repr=False)
-    deflection: np.ndarray = field(repr=False)
+    pressure: object = field(repr=False)
+    gap: object = field(repr=False)
+    deflection: object = field(repr=False)
 
     def __post_init__(self):
         status = SolveStatus(self.status)
         object.__setattr__(self, "status", status)
         if bool(self.converged) != (status is SolveStatus.CONVERGED):
             raise ValueError(f"converged={self.converged!r} contradicts status {status.value!r}")
+
+    def to_numpy(self) -> ContactResult:
+        """This record with its fields copied to host NumPy arrays (itself if they are).
+
+        The edge between the solvers, which keep the fields where the heights are, and
+        what needs NumPy: files, plots, scipy-based analysis. Scalars are unchanged.
+        """
+        names = ("pressure", "gap", "deflection")
+        if all(is_numpy_array(getattr(self, k)) for k in names):
+            return self
+        return dataclasses.replace(self, **{k: to_numpy(getattr(self, k)) for k in names})
 
     @property
     def total_load(self) -> float:

@@ -52,8 +52,9 @@ def solve(
         modulus; > 0 pushes the bodies together).
     offset : float, optional
         Displacement control: offset ``d`` (length); gap ``g = d - h + w``.
-    initial : ContactResult, optional
-        Warm start from a previous state.
+    initial : ContactResult or array, optional
+        Warm start from a previous state (copied only if it is not on the device the
+        solve computes on).
     tol : float, optional
         Convergence tolerance (the solver's measure; see its documentation), in (0, 1).
         Default 1e-8 (float64) or 1e-6 (float32, also the smallest allowed there).
@@ -64,7 +65,8 @@ def solve(
     device : {None, "cpu", "cuda", "cuda:N"}, optional
         Where to compute: ``None`` computes where ``heights`` live (pass CuPy arrays to
         compute on a GPU), ``"cuda"`` moves them to the GPU first. The result record's
-        fields are NumPy either way. See :func:`roughcontact.to_device`.
+        fields stay there (``result.to_numpy()`` copies them to the host). See
+        :func:`roughcontact.to_device`.
     dtype : {None, "float64", "float32"}, optional
         Precision of the computation; default float64. float32 halves memory and FFT
         time; its accuracy floor (measured) is in the README.

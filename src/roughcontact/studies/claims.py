@@ -61,6 +61,19 @@ LINEAR_BAND = 0.1
 #: Paper: d_rep/π within a factor of 2 of 4h'_rms/(π h''_rms) (Fig. 3, lower inset).
 D_REP_FACTOR = 2.0
 VERDICTS = (STICKY, NOT_STICKY, UNDECIDED)
+#: What :func:`criterion` lists of a parameter set whose decided verdicts differ.
+DISAGREEMENT_KEYS = (
+    "hurst",
+    "rms_slope",
+    "short_cutoff",
+    "adhesion_length",
+    "verdict",
+    "predicted_verdict",
+    "predicted_verdict_continuum",
+    "kappa",
+    "kappa_att",
+    "kappa_rep",
+)
 
 
 # ----------------------------------------------------------------------------- helpers
@@ -458,21 +471,7 @@ def criterion(ds, *, confidence=0.95) -> dict:
         if v is not None:
             out[name] = _confusion(per_task, [_task_verdict(v[i]) for i in tasks])
     out["disagreements"] = [
-        {
-            k: r.get(k)
-            for k in (
-                "hurst",
-                "rms_slope",
-                "short_cutoff",
-                "adhesion_length",
-                "verdict",
-                "predicted_verdict",
-                "predicted_verdict_continuum",
-                "kappa",
-                "kappa_att",
-                "kappa_rep",
-            )
-        }
+        {k: r.get(k) for k in DISAGREEMENT_KEYS}
         for r in rows
         if UNDECIDED not in (r["verdict"], r["predicted_verdict"])
         and r["verdict"] != r["predicted_verdict"]

@@ -17,29 +17,16 @@ from pathlib import Path
 import numpy as np
 
 from .._validate import ParameterError
+from ..pathdata import PER_STEP, VARIABLES
 from . import store
 from .schema import SWEEP_KEYS
 
-__all__ = ["STEP_VARIABLES", "collect_study"]
+__all__ = ["STEP_VARIABLES", "collect_study", "read_collected"]
 
-STEP_VARIABLES = (
-    "offset",
-    "load",
-    "repulsive_load",
-    "attractive_load",
-    "repulsive_area",
-    "attractive_area",
-    "perimeter",
-    "mean_gap",
-    "iterations",
-    "residual",
-    "repulsive_patches",
-    "solve_seconds",
-    "converged",
-    "jump",
-    "branch",
-)
-_FLAGS = ("converged", "jump")
+#: The per-step variables of the task files collected along ``step``: every one of the path
+#: layout's but ``status`` (in a collected study, ``status`` is the task's).
+STEP_VARIABLES = tuple(name for name in PER_STEP if name != "status")
+_KIND = {v.name: v.kind for v in VARIABLES}
 # path-level attributes of a task file -> variable names in the collected dataset
 _PATH_ATTRS = {
     "pull_off": "pull_off",
@@ -170,9 +157,10 @@ def collect_study(out_dir, *, include_timings: bool = True):
         predicted_verdict and necessary_condition, as strings), analysis_warnings,
         analysis_error, measured surface statistics, steps_not_converged, n_steps,
         status ("done", "failed", "missing"), failed (True unless done), failure_reason,
-        task_file. On ``task`` × ``step``: offset, load, repulsive/attractive load and
-        area, perimeter, mean_gap, iterations, residual, repulsive_patches, converged,
-        jump, branch. Areas and loads
+        task_file. On ``task`` × ``step``: the per-step variables of the path layout
+        (:data:`STEP_VARIABLES`: offset, load, repulsive/attractive load and area,
+        perimeter, perimeter_edges, corrected_repulsive_area, mean_gap, iterations,
+        converged, residual, solve_seconds, repulsive_patches, jump, branch). Areas and loads
         per A0 (loads in units of E*), lengths in units of a0.
     """
     import xarray as xr
@@ -235,7 +223,7 @@ def collect_study(out_dir, *, include_timings: bool = True):
         ),
     )
     for name in STEP_VARIABLES:
-        flag, label = name in _FLAGS, name == "branch"
+        flag, label = _KIND[name] == "b", _KIND[name] == "U"
         fill = False if flag else ("" if label else math.nan)
         dtype = bool if flag else (object if label else float)
         block = np.full((len(tasks), width), fill, dtype=dtype)
@@ -260,4 +248,40 @@ def collect_study(out_dir, *, include_timings: bool = True):
             "lengths in units of the pixel size, pressures in units of E*",
         }
     )
+    return ds
+
+
+def read_collected(source, *, include_timings: bool = True):
+    """The collected dataset of a study directory (collected now) or of a collected ``.nc``.
+
+    Parameters
+    ----------
+    source : path-like
+        A study directory or a file written by ``roughcontact study collect``.
+    include_timings : bool
+        Keep the wall-clock variables (see :func:`collect_study`).
+
+    Raises
+    ------
+    ParameterError
+        One line when ``source`` is neither, or the file holds no ``task`` dimension.
+    """
+    import xarray as xr
+
+    src = Path(source)
+    if src.is_dir():
+        return collect_study(src, include_timings=include_timings)
+    try:
+        ds = xr.load_dataset(src, engine="h5netcdf")
+    except (OSError, ValueError) as err:
+        raise ParameterError(
+            f"{str(src)!r} is neither a study directory nor a readable NetCDF file: {err}"
+        ) from None
+    if "task" not in ds.dims:
+        raise ParameterError(
+            f"{str(src)!r} is not a collected study (no 'task' dimension); make one with "
+            "'roughcontact study collect DIR -o OUT.nc'"
+        )
+    if not include_timings:
+        ds = ds.drop_vars([k for k in TIMINGS if k in ds.variables])
     return ds

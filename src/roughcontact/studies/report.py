@@ -28,50 +28,25 @@ from pathlib import Path
 import numpy as np
 
 from .._io import write_bytes_atomic, write_netcdf_atomic
-from .._validate import ParameterError, json_safe
+from .._validate import json_safe
 from . import claims as _claims
 
 __all__ = ["load_collected", "render_report", "write_report"]
 
-STEP_COLUMNS = (
-    "branch",
-    "offset",
-    "load",
-    "repulsive_load",
-    "attractive_load",
-    "repulsive_area",
-    "attractive_area",
-    "perimeter",
-    "mean_gap",
-    "iterations",
-    "residual",
-    "repulsive_patches",
-    "converged",
-    "jump",
-)
+
+def _step_columns():
+    """The per-step variables of the steps table (no wall-clock times)."""
+    from .collect import STEP_VARIABLES, TIMINGS
+
+    return [v for v in STEP_VARIABLES if v not in TIMINGS]
 
 
 def load_collected(source):
-    """The collected dataset of a study directory or of a collected ``.nc`` file."""
-    import xarray as xr
+    """The collected dataset of a study directory or of a collected ``.nc`` file, without
+    wall-clock times (a report of the same data is the same file)."""
+    from .collect import read_collected
 
-    from .collect import TIMINGS, collect_study
-
-    src = Path(source)
-    if src.is_dir():
-        return collect_study(src, include_timings=False)
-    try:
-        ds = xr.load_dataset(src, engine="h5netcdf")
-    except (OSError, ValueError) as err:
-        raise ParameterError(
-            f"{str(src)!r} is neither a study directory nor a readable NetCDF file ({err})"
-        ) from None
-    if "task" not in ds.dims:
-        raise ParameterError(
-            f"{str(src)!r} is not a collected study (no 'task' dimension); make one with "
-            "'roughcontact study collect DIR -o OUT.nc'"
-        )
-    return ds.drop_vars([k for k in TIMINGS if k in ds.variables])
+    return read_collected(source, include_timings=False)
 
 
 # ------------------------------------------------------------------------- tables
@@ -96,7 +71,7 @@ def _steps_frame(ds):
         if n == 0:
             continue
         block = {"task": np.repeat(tid, n), "step": np.arange(n)}
-        for name in STEP_COLUMNS:
+        for name in _step_columns():
             if name in ds.variables:
                 block[name] = np.asarray(ds[name].values)[i, :n]
         frames.append(pd.DataFrame(block))
@@ -122,6 +97,8 @@ def _n(x, digits=3) -> str:
         return "–"
     if isinstance(x, str):
         return x
+    if float(x).is_integer() and abs(x) < 1e6:
+        return str(int(x))
     if x != 0 and (abs(x) < 1e-3 or abs(x) >= 1e4):
         return f"{x:.{digits - 1}e}"
     return f"{x:.{digits}g}"
@@ -170,6 +147,15 @@ def _header(meta) -> list[str]:
         f"- roughcontact {meta['versions']['roughcontact']}, Python "
         f"{meta['versions']['python']}, NumPy {meta['versions']['numpy']}, SciPy "
         f"{meta['versions']['scipy']}.",
+        *(
+            [
+                f"- **Partial study**: {meta['tasks_missing']} tasks are not computed yet; "
+                "every number below rests on the finished ones only (continue it with the "
+                "first command under *How to regenerate*).",
+            ]
+            if meta["tasks_missing"]
+            else []
+        ),
         "",
         "Lattice units: lengths in units of a0, pressures in units of E*, areas and loads "
         "per nominal area A0. κ's are combined over tasks and seeds through 1/κ. Intervals "
@@ -350,18 +336,7 @@ def _claim_lines(c) -> list[str]:
                 "| "
                 + " | ".join(
                     _n(r.get(k)) if not isinstance(r.get(k), str) else r[k]
-                    for k in (
-                        "hurst",
-                        "rms_slope",
-                        "short_cutoff",
-                        "adhesion_length",
-                        "verdict",
-                        "predicted_verdict",
-                        "predicted_verdict_continuum",
-                        "kappa",
-                        "kappa_att",
-                        "kappa_rep",
-                    )
+                    for k in _claims.DISAGREEMENT_KEYS
                 )
                 + " |"
             )
@@ -431,8 +406,12 @@ def _versions() -> dict:
 
 
 def _meta(ds, source, out, claims) -> dict:
-    seeds = sorted(set(np.asarray(ds["seed"].values).tolist())) if "seed" in ds.coords else []
     a = ds.attrs
+    done = (np.asarray(ds["status"].values) == "done") if "status" in ds.variables else None
+    seeds = []
+    if "seed" in ds.coords:  # the realisations with data
+        seed = np.asarray(ds["seed"].values)
+        seeds = sorted(set((seed if done is None else seed[done]).tolist()))
     grid = []
     for key, label in (
         ("size", "n"),
@@ -447,7 +426,6 @@ def _meta(ds, source, out, claims) -> dict:
     settings = json.loads(a.get("study_settings", "{}") or "{}")
     study_dir = str(source) if Path(source).is_dir() else "STUDY_DIR"
     study_file = f"{study_dir}/study.toml" if Path(source).is_dir() else "STUDY.toml"
-    done = (np.asarray(ds["status"].values) == "done") if "status" in ds.variables else None
     return {
         "title": f"Reproduction of Pastewka & Robbins (2014): study '{a.get('study_name', '?')}'",
         "study_name": a.get("study_name", "?"),

@@ -25,13 +25,13 @@ from .._validate import (
 )
 from ..interactions.registry import PARAMETERS, make_law
 from ..interactions.registry import names as law_names
+from ..pathdata import FIELDS  # the field maps a path file can keep (one owner)
 
 __all__ = ["SCHEMA", "SWEEP_KEYS", "find", "make_interaction"]
 
 DEFAULT_LAW = "lj93smooth"
 # the registry's laws, the default first (as the schema has always listed them)
 LAWS = (DEFAULT_LAW, *(n for n in law_names() if n != DEFAULT_LAW))
-FIELDS = ("pressure", "gap", "deflection")
 UNITS = {
     "offset": ("length", "rms_height", "bearing_area"),
     "load": ("modulus", "rms_slope_modulus"),
@@ -93,6 +93,9 @@ SCHEMA = {
             lambda v: v in ("bonded", "frictionless"),
             default="bonded",
         ),
+        # false: a free boundary (no periodic images; a half-space only). Left at the
+        # default it is not part of the task keys (studies/spec.py: _keyed)
+        "periodic": _k(bool, default=True),
     },
     "interaction": {
         "law": _k(str, "one of " + ", ".join(LAWS), lambda v: v in LAWS, default=DEFAULT_LAW),

@@ -19,7 +19,7 @@ from pathlib import Path
 
 from .._validate import MAX_PATH_STEPS, ParameterError, layer_thickness, step_indices
 from ..interactions.registry import law_parameters
-from ..solvers._ops import DEFAULT_TOL
+from ..solvers.inputs import DEFAULT_TOL
 from .schema import KINDS, LAW_KEYS, SCHEMA, SWEEP_KEYS, UNITS, find, make_interaction
 
 __all__ = [
@@ -166,7 +166,7 @@ def study_from_dict(data, *, source="<dict>", text=None, default_name="study") -
         _tensile_loads(settings["path"], resolved, varying)
         for seed in seeds:
             params = {**resolved, "seed": seed}
-            key = _digest({"params": params, "settings": settings})
+            key = _digest({"params": _keyed(params), "settings": settings})
             tasks.append(Task(f"{len(tasks):0{width}d}", params, settings, key))
     text = json.dumps(data, sort_keys=True) if text is None else text
     return StudySpec(
@@ -183,6 +183,12 @@ def study_from_dict(data, *, source="<dict>", text=None, default_name="study") -
 
 def _digest(obj) -> str:
     return hashlib.sha256(json.dumps(obj, sort_keys=True).encode()).hexdigest()
+
+
+def _keyed(params) -> dict:
+    """The parameters a task key hashes: a later key left at its default is dropped, so a
+    study that does not use it keeps the keys it had (its directories still --resume)."""
+    return {k: v for k, v in params.items() if not (k == "periodic" and v is True)}
 
 
 def _settings(sections) -> dict:
@@ -302,6 +308,8 @@ def _resolve(combo, varying) -> dict:
             layer_thickness("thickness", p["thickness"], a0)
         except ParameterError as err:
             _fail(f"[substrate] {err} ({where})")
+        if p["periodic"] is False:
+            _fail(f"[substrate] periodic = false needs a half-space (no thickness) ({where})")
     if p["short_cutoff"] < 2 * a0:
         _fail(
             f"[surface] short_cutoff = {p['short_cutoff']!r} is out of range: accepted >= "

@@ -30,15 +30,18 @@ import time
 from pathlib import Path
 
 from .._validate import ParameterError
+from ..pathdata import FIELDS
 from .lock import UnsafePath, open_regular
-from .schema import FIELDS
 
 __all__ = [
     "MANIFEST",
     "MARKER",
+    "PARAMETERS_ATTR",
     "check_task",
     "failure_path",
     "read_manifest",
+    "task_files",
+    "task_parameters",
     "task_path",
     "write_failure",
     "write_manifest",
@@ -46,14 +49,27 @@ __all__ = [
 ]
 
 MARKER = "roughcontact_task_complete"
+#: The attribute of a task file holding the task's parameters (JSON).
+PARAMETERS_ATTR = "task_parameters"
 MANIFEST = "study.json"
 _TMP = ".tmp"
+_TASK_FILES = "task-*.nc"  # the names of task_path
 _COMPRESSION = {"zlib": True, "complevel": 4}
 
 
 def task_path(out_dir, task_id: str) -> Path:
     """Final location of a finished task's NetCDF file."""
     return Path(out_dir) / f"task-{task_id}.nc"
+
+
+def task_files(out_dir) -> list[Path]:
+    """The task files (:func:`task_path`) in a study directory, sorted by task id."""
+    return sorted(Path(out_dir).glob(_TASK_FILES))
+
+
+def task_parameters(attrs) -> dict:
+    """The parameters of a task (``{}`` if not given) from a task file's attributes."""
+    return json.loads(attrs.get(PARAMETERS_ATTR, "{}") or "{}")
 
 
 def failure_path(out_dir, task_id: str) -> Path:
@@ -84,17 +100,17 @@ def _field_encoding(ds) -> dict:
 
 
 def write_task(out_dir, task, ds) -> Path:
-    """Write a finished task atomically (:func:`roughcontact._io.write_netcdf_atomic`).
+    """Write a finished task atomically (:func:`roughcontact.pathdata.write_path`).
 
     The file is built in memory with the completion marker :data:`MARKER` and appears
     under its name only complete (renamed over it once written and fsync'ed). A full
     disk (or quota, I/O error) raises :class:`roughcontact._io.WriteError`, one line,
     with every finished task file intact and no temporary file left.
     """
-    from .._io import write_netcdf_atomic
+    from ..pathdata import write_path
 
     marker = {MARKER: time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())}
-    path = write_netcdf_atomic(
+    path = write_path(
         ds,
         task_path(out_dir, task.id),
         encoding=_field_encoding(ds),
@@ -165,7 +181,7 @@ def existing_results(out_dir) -> bool:
     """Does ``out_dir`` already hold a study (a manifest or task files)?"""
     out = Path(out_dir)
     return out.is_dir() and (
-        (out / MANIFEST).exists() or any(out.glob("task-*.nc")) or any(out.glob("task-*.json"))
+        (out / MANIFEST).exists() or any(out.glob(_TASK_FILES)) or any(out.glob("task-*.json"))
     )
 
 

@@ -10,7 +10,6 @@ with the task's provenance in its attributes; it is written by the driver (:mod:
 from __future__ import annotations
 
 import json
-import math
 import os
 import platform
 import socket
@@ -19,9 +18,13 @@ import traceback
 
 import numpy as np
 
+from .._backend import to_numpy
 from .._validate import ParameterError
-from .schema import FIELDS, make_interaction
+from ..analysis.contact_geometry import area_fraction
+from ..pathdata import FIELDS, add_fields
+from .schema import make_interaction
 from .spec import Task
+from .store import PARAMETERS_ATTR
 
 __all__ = ["AreaFields", "compute_task", "path_values", "run_task", "with_fields"]
 
@@ -46,10 +49,10 @@ def path_values(path: dict, heights, law, params: dict) -> np.ndarray:
     elif path["num"] is not None:
         space = np.geomspace if path["spacing"] == "geometric" else np.linspace
         values = space(path["start"], path["stop"], path["num"])
-    else:
-        start, stop, step = path["start"], path["stop"], abs(path["step"])
-        count = int(math.floor(abs(stop - start) / step + 1e-9)) + 1
-        values = start + np.sign(stop - start or 1) * step * np.arange(count)
+    else:  # start, stop, step as 'roughcontact path --offsets' steps them
+        from ..solvers.offsets import stepped_values
+
+        values = stepped_values(path["start"], path["stop"], path["step"], name="[path]")
     if path["control"] == "offset":
         from ..solvers.offsets import relative_offsets
 
@@ -89,7 +92,7 @@ class AreaFields:
         if not self.targets or index >= self.approach_steps:
             return
         # the sites Fig. 1 paints orange (p > 0), so that its choice is this one
-        area = float(np.count_nonzero(result.pressure > 0)) / result.pressure.size
+        area = area_fraction(result.pressure > 0)  # counted on the device
         for target in self.targets:
             distance = abs(area - target)
             if target not in self._best or distance < self._best[target][0]:
@@ -100,28 +103,18 @@ class AreaFields:
                 )
 
     def fields(self) -> dict:
-        """``{step: (pressure, gap, deflection)}`` of the chosen states."""
-        return {step: arrays for _, step, arrays in self._best.values()}
+        """``{step: (pressure, gap, deflection)}`` of the chosen states, NumPy (the edge)."""
+        return {step: tuple(to_numpy(a) for a in arrays) for _, step, arrays in self._best.values()}
 
 
 def with_fields(ds, extra: dict):
     """``ds`` with the fields ``{step: (pressure, gap, deflection)}`` added on ``field_step``.
 
     Steps already stored (``fields_at``) are kept; the result has the layout of
-    :func:`roughcontact.approach_retract`'s fields, sorted by step.
+    :func:`roughcontact.approach_retract`'s fields, sorted by step
+    (:func:`roughcontact.pathdata.add_fields`).
     """
-    if not extra:
-        return ds
-    fields = dict(extra)
-    if "field_step" in ds.coords:
-        for k, step in enumerate(ds["field_step"].values):
-            fields[int(step)] = tuple(np.asarray(ds[name].values[k]) for name in FIELDS)
-        ds = ds.drop_vars([*FIELDS, "field_step"])
-    steps = sorted(fields)
-    ds = ds.assign_coords(field_step=steps)
-    for i, name in enumerate(FIELDS):
-        ds[name] = (("field_step", "x", "y"), np.stack([fields[s][i] for s in steps]))
-    return ds
+    return add_fields(ds, extra)
 
 
 def compute_task(task: Task):
@@ -152,6 +145,7 @@ def compute_task(task: Task):
         thickness=p["thickness"],
         poisson=p["poisson"],
         base=p["base"],
+        periodic=p.get("periodic", True),
     )
     law = make_interaction(p)
     values = path_values(s["path"], heights, law, p)
@@ -186,7 +180,7 @@ def compute_task(task: Task):
         {
             "task_id": task.id,
             "task_key": task.key,
-            "task_parameters": json.dumps(p, sort_keys=True),
+            PARAMETERS_ATTR: json.dumps(p, sort_keys=True),
             "task_settings": json.dumps(s, sort_keys=True),
             "seed": int(p["seed"]),
             "solver_tol": float(s["solver"]["tol"]),

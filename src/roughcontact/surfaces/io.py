@@ -1,8 +1,10 @@
-"""Reading and writing height maps (``.npy`` or plain text).
+"""Reading and writing height maps (``.npy``, plain text, or instrument files).
 
 Text files hold one grid row (fixed ``i``, i.e. fixed ``x``) per line, values separated
 by whitespace or commas; lines starting with ``#`` are comments. Heights are in the
-same length unit as the pixel size the caller uses.
+same length unit as the pixel size the caller uses. Any other file (AFM, interferometer,
+stylus profilometer formats) is read through SurfaceTopography by
+:func:`roughcontact.topography.load_topography`, in metres.
 """
 
 from __future__ import annotations
@@ -21,15 +23,58 @@ __all__ = ["load_heights", "save_heights"]
 _EXPECTED = "a 2D array (at least 2x2) of finite real heights with a finite rms"
 
 
-def load_heights(path) -> np.ndarray:
-    """Load a height map from a ``.npy`` file or a whitespace/comma separated text file.
+def _existing_file(path) -> Path:
+    p = Path(os.fspath(path))
+    if not p.is_file():
+        raise ParameterError(
+            f"path {str(p)!r}: no such file; expected a .npy, text or instrument file "
+            f"holding {_EXPECTED}"
+        )
+    return p
+
+
+def _read_array(p: Path, expected: str = _EXPECTED) -> np.ndarray:
+    """The array of a ``.npy`` or plain text file, as float64 (any number of dimensions).
+
+    Boolean, complex, object and text arrays are rejected, never converted.
+    """
+    try:
+        if p.suffix.lower() == ".npy":
+            data = np.load(p, allow_pickle=False)
+        else:
+            text = p.read_text().replace(",", " ")
+            data = np.loadtxt(_io.StringIO(text), dtype=float)
+    except (OSError, ValueError, UnicodeDecodeError, EOFError) as exc:
+        raise ParameterError(
+            f"path {str(p)!r}: could not read heights ({exc}); expected {expected}"
+        ) from None
+    try:
+        # the dtype first: bool, complex (imaginary part), object and text never convert
+        return np.asarray(real_array("heights", data), dtype=np.float64)
+    except ParameterError as exc:
+        raise ParameterError(f"path {str(p)!r}: expected {expected} ({exc})") from None
+    except (TypeError, ValueError, OverflowError):
+        raise ParameterError(
+            f"path {str(p)!r}: data of dtype {data.dtype} is not numeric; expected {expected}"
+        ) from None
+
+
+def load_heights(path, channel=None) -> np.ndarray:
+    """Load a height map from a ``.npy`` file, a text file or an instrument file.
 
     Parameters
     ----------
     path : str or os.PathLike
-        File to read. ``.npy`` is read with :func:`numpy.load` (no pickles); any other
-        suffix is read as text with :func:`numpy.loadtxt` (commas are treated as
-        separators, ``#`` starts a comment).
+        File to read. ``.npy`` is read with :func:`numpy.load` (no pickles); a plain
+        text file (numbers separated by whitespace or commas, ``#`` starts a comment)
+        with :func:`numpy.loadtxt`, heights as stored (the caller's length unit). Any
+        other file is an instrument file (AFM, interferometer, ...) read by
+        :func:`roughcontact.topography.load_topography` (needs SurfaceTopography):
+        its heights are returned **in metres**, whatever unit the file stores, and its
+        pixel size (also in metres) is in ``load_topography(path).pixel_size``.
+    channel : str or int, optional
+        Channel of an instrument file, by name or index (default: the file's default
+        channel). ``.npy`` and text files have one channel (None, 0 or ``"heights"``).
 
     Returns
     -------
@@ -40,34 +85,30 @@ def load_heights(path) -> np.ndarray:
     ParameterError
         If the file is missing or unreadable, or does not hold a 2D array of finite
         real numbers (boolean, complex, object and text arrays are rejected, never
-        converted; heights whose rms overflows too); the message names the path and
-        what was expected.
+        converted; heights whose rms overflows too; an instrument line scan is 1D); the
+        message names the path and what was expected.
     """
-    p = Path(os.fspath(path))
-    if not p.is_file():
+    from ..topography.read import file_kind, load_topography
+
+    p = _existing_file(path)
+    if file_kind(p) == "instrument":
+        topo = load_topography(p, channel=channel)
+        if topo.dim != 2:
+            raise ParameterError(
+                f"path {str(p)!r}: holds a {topo.dim}D line scan of {topo.shape[0]} points; "
+                f"expected {_EXPECTED} (read line scans with roughcontact.load_topography)"
+            )
+        return np.array(topo.heights, dtype=np.float64)
+    if channel not in (None, 0, "0", "heights"):
         raise ParameterError(
-            f"path {str(p)!r}: no such file; expected a .npy or text file holding {_EXPECTED}"
+            f"channel must be None, 0 or 'heights' for {str(p)!r} (a .npy or text file has "
+            f"one channel), got {channel!r}"
         )
+    data = _read_array(p)
     try:
-        if p.suffix.lower() == ".npy":
-            data = np.load(p, allow_pickle=False)
-        else:
-            text = p.read_text().replace(",", " ")
-            data = np.loadtxt(_io.StringIO(text), dtype=float)
-    except (OSError, ValueError, UnicodeDecodeError) as exc:
-        raise ParameterError(
-            f"path {str(p)!r}: could not read heights ({exc}); expected {_EXPECTED}"
-        ) from None
-    try:
-        # the dtype first: bool, complex (imaginary part), object and text never convert
-        data = np.asarray(real_array("heights", data), dtype=np.float64)
         return np.array(heights2d("heights", data), dtype=np.float64)
     except ParameterError as exc:
         raise ParameterError(f"path {str(p)!r}: expected {_EXPECTED} ({exc})") from None
-    except (TypeError, ValueError, OverflowError):
-        raise ParameterError(
-            f"path {str(p)!r}: data of dtype {data.dtype} is not numeric; expected {_EXPECTED}"
-        ) from None
 
 
 def save_heights(path, heights) -> Path:

@@ -1,6 +1,12 @@
-"""Axes helpers of the figures: a pyplot-free Figure, log axes over whole decades."""
+"""Axes helpers of the figures: a pyplot-free Figure, log axes over whole decades.
+
+Shared by the paper's figures (:mod:`roughcontact.plot.figures`) and the report of a
+measured scan (:mod:`roughcontact.topography.report`), so both look alike.
+"""
 
 from __future__ import annotations
+
+__all__ = ["decades", "figure", "log_axes", "loglog"]
 
 import math
 
@@ -8,6 +14,10 @@ import numpy as np
 
 
 def figure(width, height):
+    """A matplotlib ``Figure`` of ``width`` x ``height`` inches, constrained layout.
+
+    Made without pyplot, so no global state and no GUI backend is touched.
+    """
     from matplotlib.figure import Figure
 
     return Figure(figsize=(width, height), layout="constrained")
@@ -24,6 +34,7 @@ def decades(*arrays):
 
 
 def log_axes(ax, xlim, ylim):
+    """Log-scaled x and y axes with the given limits and no minor tick labels."""
     from matplotlib.ticker import NullFormatter
 
     ax.set_xscale("log")

@@ -1,0 +1,176 @@
+"""``roughcontact stick SCAN``: is this measured surface sticky?
+
+Pastewka & Robbins, PNAS 111, 3298 (2014), Eq. 10, evaluated from a topography file
+(:func:`roughcontact.stick`): the statistics at the smallest reliable scale, their
+self-affine extrapolation down to the atomic spacing, and the verdict with its
+uncertainty. Values take units (``--modulus 10MPa --work-of-adhesion 50mJ/m^2``); plain
+numbers are SI. Bad input is one line on stderr and exit code 2 (the ``roughcontact``
+group turns :class:`roughcontact.ParameterError` into it).
+"""
+
+from __future__ import annotations
+
+import json
+
+import click
+
+from .._validate import DPI
+from ..topography.prepare import DETREND_MODES
+
+__all__ = ["stick"]
+
+
+def _pixel_size(text):
+    """``"10 nm"`` or ``"10nm,20nm"`` (one per axis) in metres; None stays None."""
+    if text is None:
+        return None
+    from ..criterion import parse_quantity
+
+    parts = [p for p in str(text).split(",") if p.strip()]
+    sizes = tuple(parse_quantity(p, "length", "--pixel-size") for p in parts)
+    return sizes[0] if len(sizes) == 1 else sizes
+
+
+@click.command("stick")
+@click.argument("scan", metavar="SCAN")
+@click.option("--channel", default=None, help="Data channel of a multi-channel file.")
+@click.option(
+    "--modulus",
+    required=True,
+    help="Contact modulus E*, e.g. '10 MPa'; Young's modulus E with --poisson.",
+)
+@click.option("--work-of-adhesion", "work", required=True, help="w, e.g. '50 mJ/m^2'.")
+@click.option(
+    "--poisson", default=None, help="Poisson ratio: --modulus is then E, E* = E/(1-nu^2)."
+)
+@click.option(
+    "--range", "range_", default="0.5 nm", show_default=True, help="Interaction range Δr."
+)
+@click.option("--tip-radius", default=None, help="Probe radius (reliability cutoff), e.g. '20 nm'.")
+@click.option(
+    "--reliability-cutoff",
+    default=None,
+    help="Shortest reliable wavelength, instead of --tip-radius, e.g. '50 nm'.",
+)
+@click.option(
+    "--detrend",
+    type=click.Choice(DETREND_MODES),
+    default="plane",
+    show_default=True,
+    help="What to remove before the analysis.",
+)
+@click.option(
+    "--kappa-rep",
+    type=float,
+    default=2.0,
+    show_default=True,
+    help="Non-adhesive κ_rep (2: the paper's choice).",
+)
+@click.option(
+    "--atomic-spacing",
+    default="0.3 nm",
+    show_default=True,
+    help="a0: the smallest roughness scale of the extrapolation.",
+)
+@click.option(
+    "--pixel-size",
+    default=None,
+    help="Grid spacing of a .npy/text file, e.g. '2 nm' (or 'X,Y' per axis).",
+)
+@click.option(
+    "--height-unit", default=None, help="Unit of a .npy/text file's heights (m, nm, ...)."
+)
+@click.option("--periodic", is_flag=True, help="The scan is one period of a periodic surface.")
+@click.option(
+    "--fit-range",
+    nargs=2,
+    default=None,
+    metavar="SHORT LONG",
+    help="Wavelengths of the Hurst fit, e.g. '10nm 1um' (default: 4 pixels or the "
+    "reliability cutoff to a quarter of the scan).",
+)
+@click.option(
+    "--hurst-sigmas",
+    type=click.FloatRange(min=0),
+    default=2.0,
+    show_default=True,
+    help="Half-width of the Hurst exponent's band in standard errors.",
+)
+@click.option(
+    "-o",
+    "--output",
+    "out_dir",
+    type=click.Path(file_okay=False),
+    default=None,
+    help="Report directory: result.json, summary.txt and figures (created).",
+)
+@click.option(
+    "--format",
+    "formats",
+    multiple=True,
+    default=("png",),
+    show_default=True,
+    type=click.Choice(["png", "pdf", "svg"]),
+    help="Figure format with -o (repeatable).",
+)
+@click.option(
+    "--dpi",
+    type=int,
+    default=150,
+    show_default=True,
+    help=f"PNG resolution with -o ({DPI.accepted}).",
+)
+@click.option("--json", "as_json", is_flag=True, help="Print one JSON object (SI units).")
+def stick(scan, channel, modulus, work, poisson, range_, tip_radius, reliability_cutoff,
+          detrend, kappa_rep, atomic_spacing, pixel_size, height_unit, periodic, fit_range,
+          hurst_sigmas, out_dir, formats, dpi, as_json):  # fmt: skip
+    """Is the surface in SCAN sticky? (Pastewka & Robbins 2014, Eq. 10.)
+
+    SCAN is an instrument file (AFM, interferometer, stylus profilometer; read with
+    SurfaceTopography), or a .npy/text file with --pixel-size. The rms slope and
+    curvature are measured down to the reliability cutoff (--tip-radius; else the
+    Nyquist wavelength) and extrapolated with the fitted Hurst exponent down to
+    --atomic-spacing. The verdict is "sticky" or "not sticky" when it holds for every
+    smallest roughness scale in between (and every H within its uncertainty), else
+    "depends on roughness below X".
+    """
+    from ..topography.report import summary, write_report
+    from ..topography.verdict import stick as run
+
+    if out_dir is not None:
+        DPI.check("--dpi", dpi)
+    result = run(
+        scan,
+        modulus=modulus,
+        work_of_adhesion=work,
+        interaction_range=range_,
+        poisson=poisson,
+        tip_radius=tip_radius,
+        channel=channel,
+        detrend=detrend,
+        kappa_rep=kappa_rep,
+        atomic_spacing=atomic_spacing,
+        pixel_size=_pixel_size(pixel_size),
+        height_unit=height_unit,
+        periodic=periodic,
+        reliability_cutoff=reliability_cutoff,
+        fit_range=_fit_range(fit_range),
+        hurst_sigmas=hurst_sigmas,
+    )
+    if out_dir is not None:
+        write_report(result, out_dir, formats=formats, dpi=dpi)
+    if as_json:
+        click.echo(json.dumps(result.to_dict(), allow_nan=False))
+        return
+    for line in summary(result):
+        click.echo(line)
+    if out_dir is not None:
+        click.echo(f"report: {out_dir}")
+
+
+def _fit_range(values):
+    if not values:
+        return None
+    from ..criterion import parse_quantity
+
+    return tuple(parse_quantity(v, "length", "--fit-range") for v in values)

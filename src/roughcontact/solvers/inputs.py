@@ -1,0 +1,103 @@
+"""Input checks shared by the solvers, and their default tolerances."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .._backend import (
+    array_device,
+    array_namespace,
+    dtype_name,
+    is_numpy_array,
+    to_device,
+    to_numpy,
+)
+from .._validate import ParameterError, heights2d, real_array, tolerance
+
+__all__ = [
+    "DEFAULT_TOL",
+    "check_hard_wall_offset",
+    "check_problem",
+    "lowest_hard_wall_offset",
+    "warm_deflection",
+]
+
+
+#: Default tolerance of every solver's residual, and the smallest float32 can reach
+#: (measured: the residuals of all three solvers stall at 3e-7 to 6e-7 in single
+#: precision; see the README).
+DEFAULT_TOL = {"float64": 1e-8, "float32": 1e-6}
+
+
+def check_problem(heights, substrate, tol, offset=None, device=None, dtype=None):
+    """Validate the common inputs; return ``(heights, tol)`` ready for the solvers.
+
+    The heights come back on ``device`` in ``dtype`` (float64 unless ``"float32"`` is
+    asked for; NumPy heights contiguous) and the solvers then compute there. ``tol``
+    None gives :data:`DEFAULT_TOL` for that precision; in float32 a tolerance below its
+    floor is rejected (it could never be met).
+    """
+    heights = real_array("heights", heights)  # before to_device casts complex or bool
+    h = heights2d("heights", to_device(heights, device, dtype or "float64"))
+    if is_numpy_array(h):
+        h = np.ascontiguousarray(h)
+    if tuple(h.shape) != substrate.shape:
+        raise ParameterError(
+            f"heights shape {h.shape} differs from substrate shape {substrate.shape}"
+        )
+    if offset is not None and not math.isfinite(float(offset)):
+        raise ParameterError(f"offset must be finite, got {offset!r}")
+    precision = dtype_name(h)
+    if tol is None:
+        return h, DEFAULT_TOL[precision]
+    return h, tolerance("tol", tol, precision, DEFAULT_TOL["float32"])
+
+
+def lowest_hard_wall_offset(heights, substrate) -> float:
+    """The smallest offset a hard wall admits (length): mean(h) with a rigid mean, else -inf.
+
+    With a rigid uniform mode the mean deflection is zero, so the mean gap is
+    ``d - mean(h)``; below ``mean(h)`` every state interpenetrates somewhere.
+    """
+    if not substrate.rigid_mean:
+        return -math.inf
+    return float(array_namespace(heights).mean(heights))
+
+
+def check_hard_wall_offset(heights, substrate, offset) -> None:
+    """Reject an offset below :func:`lowest_hard_wall_offset` (no impenetrable state)."""
+    mean = lowest_hard_wall_offset(heights, substrate)
+    if offset is None or mean == -math.inf:
+        return
+    xp = array_namespace(heights)
+    if offset < mean - 1e-12 * (float(xp.max(xp.abs(heights))) + abs(offset)):
+        raise ParameterError(
+            f"offset must be >= mean(heights) = {mean:g} for a hard wall on a substrate with "
+            f"a rigid mean (got {offset:g}: the surfaces would overlap everywhere)"
+        )
+
+
+def warm_deflection(initial, substrate, heights, compliance):
+    """The flat deflection on the work grid that a warm start gives, a fresh array.
+
+    ``initial`` is a :class:`ContactResult` (its ``deflection``) or an array of the
+    patch's shape; it comes on the heights' backend, device and dtype. Periodic: that
+    deflection. Free boundary (the work grid is padded): a result's pressure through the
+    work grid's ``compliance`` (so the padding's deflection fits it), else the array's
+    deflection, zero on the padding.
+    """
+    xp = array_namespace(heights)
+    padded = tuple(substrate.work_shape) != tuple(substrate.shape)
+    source = initial.pressure if padded and hasattr(initial, "pressure") else initial
+    w = getattr(source, "deflection", source)
+    w = w if xp is array_namespace(w) else to_numpy(w)
+    w = xp.asarray(w, device=array_device(heights), copy=True)
+    w = xp.reshape(xp.astype(w, heights.dtype), (-1,))
+    if w.shape[0] != heights.shape[0] * heights.shape[1]:
+        raise ParameterError(f"initial must have the substrate's shape {substrate.shape}")
+    if not padded:
+        return w
+    w = xp.reshape(substrate.embed(xp.reshape(w, tuple(heights.shape))), (-1,))
+    return compliance(w) if source is not initial else w

@@ -1,0 +1,239 @@
+"""The answer of :func:`roughcontact.stick` in words, figures and a report folder.
+
+* :func:`summary` -- a few lines: the verdict, the margin measured and extrapolated, what
+  is measured and what extrapolated, and the scale the verdict depends on;
+* :func:`figure_scan`, :func:`figure_psd`, :func:`figure_slope`, :func:`figure_margin`
+  -- matplotlib figures (imported only here, no pyplot state);
+* :func:`write_report` -- ``result.json`` and the figures in one directory, each file
+  written atomically (:func:`roughcontact._io.write_bytes_atomic`).
+
+Everything is in SI units in the data; the figures label lengths in nm or um.
+"""
+
+from __future__ import annotations
+
+import io
+import json
+from pathlib import Path
+
+import numpy as np
+
+from .._validate import DPI, ParameterError
+from .verdict import StickResult, _length_text
+
+__all__ = [
+    "FIGURES",
+    "figure_margin",
+    "figure_psd",
+    "figure_scan",
+    "figure_slope",
+    "summary",
+    "write_report",
+]
+
+MEASURED = {"color": "C0", "lw": 1.5}
+EXTRAPOLATED = {"color": "C0", "lw": 1.5, "linestyle": "--"}
+BAND = {"color": "C0", "alpha": 0.2, "lw": 0}
+CUTOFF = {"color": "0.4", "lw": 1, "linestyle": ":"}
+
+
+def summary(result: StickResult) -> list[str]:
+    """The verdict in a few lines of text (SI values with readable prefixes)."""
+    s, v, fit = result.statistics, result.verdict, result.statistics.fit
+    c = v.centre
+    lam_c, a0 = s.measured_scale, float(v.scales[-1])
+    lo, hi = v.margin_atomic_range
+    lines = [
+        f"verdict: {v.text}",
+        f"margin kappa_rep/kappa_att (> 1 sticks): {v.margin:.3g} measured (roughness down "
+        f"to {_length_text(lam_c)}), {v.margin_atomic:.3g} extrapolated to "
+        f"{_length_text(a0)} ({lo:.3g}-{hi:.3g} within H = {v.hurst[0]:.2f}-{v.hurst[-1]:.2f})",
+        f"measured down to {_length_text(lam_c)}: h'rms = {s.rms_slope:.3g}, "
+        f"h''rms = {s.rms_curvature:.3g} 1/m, d_rep = {_length_text(s.d_rep)}",
+        f"extrapolated down to {_length_text(a0)} with H = {fit.hurst:.2f} +- "
+        f"{fit.hurst_stderr:.2f}: h'rms = {v.slopes[c, -1]:.3g}, "
+        f"h''rms = {v.curvatures[c, -1]:.3g} 1/m, "
+        f"d_rep = {_length_text(4 * v.slopes[c, -1] / v.curvatures[c, -1])}",
+    ]
+    if v.sticky is None:
+        lines.append(
+            f"the verdict depends on roughness below {_length_text(v.depends_below)}, "
+            f"below the measured {_length_text(lam_c)}: measure finer or with a sharper tip"
+        )
+    return lines
+
+
+# --------------------------------------------------------------------------- figures
+
+
+def _figure(width=5.0, height=3.6):
+    from ..plot.axes import figure
+
+    return figure(width, height)
+
+
+def figure_scan(result: StickResult):
+    """The analysed (detrended) heights: a map in nm over um, or the profile."""
+    topo, s = result.topography, result.statistics
+    fig = _figure()
+    ax = fig.add_subplot()
+    h = np.asarray(topo.heights) / 1e-9
+    if s.dim == 2:
+        Lx, Ly = (n * a / 1e-6 for n, a in zip(s.shape, s.pixel_size, strict=True))
+        im = ax.imshow(h.T, origin="lower", extent=(0, Lx, 0, Ly), cmap="viridis")
+        fig.colorbar(im, ax=ax, label="height (nm)")
+        ax.set_xlabel("x (um)")
+        ax.set_ylabel("y (um)")
+    else:
+        x = np.arange(h.size) * s.pixel_size[0] / 1e-6
+        ax.plot(x, h, lw=0.6, color="C0")
+        ax.set_xlabel("x (um)")
+        ax.set_ylabel("height (nm)")
+    detrend = result.inputs.get("detrend")
+    ax.set_title(f"{Path(getattr(topo, 'source', '') or 'scan').name} (detrend: {detrend})",
+                 fontsize=9)  # fmt: skip
+    return fig
+
+
+def figure_psd(result: StickResult):
+    """The PSD with the self-affine fit, its extrapolation and the cutoffs (log-log)."""
+    from ..plot.axes import decades, log_axes
+
+    s, v, fit = result.statistics, result.verdict, result.statistics.fit
+    fig = _figure()
+    ax = fig.add_subplot()
+    p = s.psd
+    unit = "m^4" if p.dim == 2 else "m^3"
+    ax.plot(p.q, p.psd, "o", ms=3, color="0.2", label=f"PSD ({p.window} window)")
+    q_fit = 2 * np.pi / np.array(fit.scale_range[::-1])
+    qf = np.geomspace(*q_fit, 20)
+    ax.plot(qf, fit.psd(qf), **MEASURED, label=f"fit H = {fit.hurst:.2f} +- {fit.hurst_stderr:.2f}")
+    q_c, q_a = 2 * np.pi / s.measured_scale, 2 * np.pi / float(v.scales[-1])
+    ys = [p.psd]
+    if q_a > q_c:
+        qe = np.geomspace(q_c, q_a, 30)
+        lo, hi = fit.psd(qe, v.hurst[0]), fit.psd(qe, v.hurst[-1])
+        ax.fill_between(qe, np.minimum(lo, hi), np.maximum(lo, hi), **BAND)
+        ax.plot(qe, fit.psd(qe), **EXTRAPOLATED, label="extrapolated")
+        ys.append(fit.psd(qe))
+    ax.axvline(q_c, **CUTOFF)
+    ax.text(q_c, 0.02, " measured scale", rotation=90, fontsize=7,
+            transform=ax.get_xaxis_transform(), va="bottom")  # fmt: skip
+    xs = decades(p.q, [q_a])
+    log_axes(ax, xs, decades(*ys))
+    ax.set_xlabel("wavevector q (1/m)")
+    ax.set_ylabel(f"C{'' if p.dim == 2 else '1D'}(q) ({unit})")
+    ax.legend(fontsize=7, frameon=False)
+    return fig
+
+
+def figure_slope(result: StickResult):
+    """Scale-dependent rms slope and curvature against the smallest roughness scale."""
+    from ..plot.axes import decades, log_axes
+
+    s, v = result.statistics, result.verdict
+    fig = _figure(5.0, 5.0)
+    axes = fig.subplots(2, 1, sharex=True)
+    c = v.centre
+    for ax, measured, extra, name in (
+        (axes[0], s.slopes, v.slopes, "h'rms"),
+        (axes[1], s.curvatures, v.curvatures, "h''rms (1/m)"),
+    ):
+        ax.plot(s.scales, measured, **MEASURED, label="measured")
+        ys = [measured]
+        if v.scales.size > 1:
+            ax.fill_between(v.scales, extra.min(axis=0), extra.max(axis=0), **BAND)
+            ax.plot(v.scales, extra[c], **EXTRAPOLATED, label="extrapolated")
+            ys.append(extra)
+        ax.axvline(s.measured_scale, **CUTOFF)
+        log_axes(ax, decades(s.scales, v.scales), decades(*ys))
+        ax.set_ylabel(name)
+    axes[0].legend(fontsize=7, frameon=False)
+    axes[1].set_xlabel("smallest roughness scale lambda_s (m)")
+    return fig
+
+
+def figure_margin(result: StickResult):
+    """The margin kappa_rep/kappa_att against the smallest roughness scale, sticky above 1."""
+    from ..plot.axes import decades, log_axes
+
+    v = result.verdict
+    fig = _figure()
+    ax = fig.add_subplot()
+    c = v.centre
+    if v.scales.size > 1:
+        ax.fill_between(v.scales, v.margins.min(axis=0), v.margins.max(axis=0), **BAND,
+                        label=f"H = {v.hurst[0]:.2f}-{v.hurst[-1]:.2f}")  # fmt: skip
+        ax.plot(v.scales, v.margins[c], **EXTRAPOLATED, label=f"H = {v.hurst[c]:.2f}")
+    ax.plot(v.scales[:1], v.margins[c, :1], "o", color="C0", label="measured")
+    ax.axhline(1.0, color="C3", lw=1, gid="threshold")
+    xs = decades(v.scales)
+    ys = decades(v.margins, [1.0])
+    ax.axhspan(1.0, ys[1], color="C2", alpha=0.08, lw=0)
+    ax.text(0.02, 0.97, "sticky", transform=ax.transAxes, fontsize=8, va="top", color="C2")
+    for flip in v.flip_scales:
+        ax.axvline(flip, **CUTOFF)
+    log_axes(ax, xs, ys)
+    ax.set_xlabel("smallest roughness scale lambda_s (m)")
+    ax.set_ylabel("margin kappa_rep/kappa_att")
+    ax.set_title(v.text if len(v.text) < 60 else v.text.split(" (")[0], fontsize=9)
+    ax.legend(fontsize=7, frameon=False, loc="lower left")
+    return fig
+
+
+#: File stem -> figure function, in the order they are written.
+FIGURES = {
+    "scan": figure_scan,
+    "psd": figure_psd,
+    "slope": figure_slope,
+    "margin": figure_margin,
+}
+
+
+def write_report(result: StickResult, out_dir, *, formats=("png",), dpi: int = 150) -> dict:
+    """Write ``result.json`` and the figures into ``out_dir`` (created if needed).
+
+    Only these files are written, each atomically: ``result.json`` (``to_dict()``),
+    ``summary.txt`` (:func:`summary`) and ``scan``, ``psd``, ``slope``, ``margin`` in
+    every format.
+
+    Parameters
+    ----------
+    result : StickResult
+    out_dir : path-like
+        The report directory.
+    formats : sequence of str
+        matplotlib formats (``png``, ``pdf``, ``svg``).
+    dpi : int
+        Resolution of raster formats, in [10, 2400].
+
+    Returns
+    -------
+    dict
+        ``{"result": path, "summary": path, "<figure>": [paths]}``.
+    """
+    from .._io import write_bytes_atomic
+
+    dpi = DPI.check("dpi", dpi)
+    formats = tuple(formats)
+    if not formats or any(f not in ("png", "pdf", "svg") for f in formats):
+        raise ParameterError(f"formats must be some of png, pdf, svg, got {formats!r}")
+    out = Path(out_dir)
+    if out.exists() and not out.is_dir():
+        raise ParameterError(f"report directory {str(out)!r} exists and is not a directory")
+    out.mkdir(parents=True, exist_ok=True)
+    text = json.dumps(result.to_dict(), indent=1, allow_nan=False) + "\n"
+    written = {
+        "result": write_bytes_atomic(out / "result.json", text.encode()),
+        "summary": write_bytes_atomic(
+            out / "summary.txt", ("\n".join(summary(result)) + "\n").encode()
+        ),
+    }
+    for name, make in FIGURES.items():
+        fig = make(result)
+        written[name] = []
+        for fmt in formats:
+            buffer = io.BytesIO()
+            fig.savefig(buffer, format=fmt, dpi=dpi)
+            written[name].append(write_bytes_atomic(out / f"{name}.{fmt}", buffer.getvalue()))
+    return written

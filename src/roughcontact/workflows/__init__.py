@@ -1,0 +1,7 @@
+"""Workflows: the library's jobs end to end (compute, collect, report), for any front end.
+
+:mod:`.demo` is ``roughcontact demo``: a non-adhesive load path and a built-in adhesive
+study reproducing the substance of Pastewka & Robbins, PNAS 111, 3298 (2014), Figs. 1-4;
+:mod:`.report` writes its Markdown report. The command line only parses, calls and
+prints. Nothing heavy is imported until a workflow runs.
+"""

@@ -1,0 +1,157 @@
+"""``roughcontact stick SCAN``: text, --json, -o DIR, bad input, and real instrument files.
+
+Oracles: the Python call :func:`roughcontact.stick` on the same scan (the command adds
+only units parsing and output), :func:`roughcontact.criterion.stickiness_criterion` on the
+printed statistics, and the files the report must (and must only) contain.
+"""
+
+import json
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+from click.testing import CliRunner
+
+import roughcontact as rc
+from roughcontact.cli.main import main
+from roughcontact.criterion import stickiness_criterion
+
+DATA = Path(__file__).resolve().parents[2].parent / "shared" / "data" / "topographies"
+MATERIAL = ["--modulus", "10MPa", "--work-of-adhesion", "50mJ/m^2"]
+REPORT = {"result.json", "summary.txt", "scan.png", "psd.png", "slope.png", "margin.png"}
+
+
+@pytest.fixture(scope="module")
+def scan(tmp_path_factory):
+    """A self-affine 128^2 scan in nm, saved as .npy (pixel size 5 nm given on the command)."""
+    h = rc.self_affine(128, hurst=0.4, rms_slope=0.2, short_cutoff=10.0, pixel_size=5.0, seed=2)
+    path = tmp_path_factory.mktemp("scan") / "scan.npy"
+    np.save(path, h)
+    return path
+
+
+def _run(args):
+    return CliRunner().invoke(main, ["stick", *[str(a) for a in args]])
+
+
+def _real(name):
+    path = DATA / name
+    if not path.exists():
+        pytest.skip(f"{path} not present")
+    pytest.importorskip("SurfaceTopography")
+    return path
+
+
+NPY = ["--pixel-size", "5nm", "--height-unit", "nm"]
+
+
+def test_text_output(scan):
+    r = _run([scan, *NPY, *MATERIAL])
+    assert r.exit_code == 0, r.output
+    lines = r.output.splitlines()
+    assert lines[0].startswith("verdict: ")
+    assert any(line.startswith("margin kappa_rep/kappa_att") for line in lines)
+    assert any(line.startswith("measured down to") for line in lines)
+    assert any(line.startswith("extrapolated down to 0.3 nm") for line in lines)
+    assert len(lines) <= 6
+
+
+def test_json_keys_units_and_the_python_call(scan):
+    r = _run([scan, *NPY, *MATERIAL, "--range", "0.4nm", "--kappa-rep", "2.5", "--json"])
+    assert r.exit_code == 0, r.output
+    d = json.loads(r.output)
+    for key in ("sticky", "margin", "rms_slope", "rms_curvature", "d_rep", "units", "verdict",
+                "hurst", "hurst_stderr", "reliability_cutoff", "flip_scale", "measured",
+                "extrapolated", "inputs", "margin_atomic"):  # fmt: skip
+        assert key in d
+    assert d["units"]["rms_curvature"].startswith("1/m") and d["units"]["d_rep"].startswith("m")
+    assert d["inputs"]["contact_modulus"] == pytest.approx(1e7)
+    assert d["inputs"]["interaction_range"] == pytest.approx(4e-10)
+    assert d["inputs"]["kappa_rep"] == 2.5
+    assert d["scan"]["pixel_size"] == pytest.approx([5e-9, 5e-9])
+    ref = stickiness_criterion(contact_modulus=1e7, work_of_adhesion=0.05, kappa_rep=2.5,
+                               interaction_range=4e-10, rms_slope=d["rms_slope"],
+                               rms_curvature=d["rms_curvature"])  # fmt: skip
+    assert d["margin"] == pytest.approx(ref.margin, rel=1e-12)
+    py = rc.stick(scan, pixel_size=5e-9, height_unit="nm", modulus="10 MPa",
+                  work_of_adhesion=0.05, interaction_range="0.4 nm", kappa_rep=2.5)  # fmt: skip
+    assert d == json.loads(json.dumps(py.to_dict()))
+
+
+def test_report_directory(scan, tmp_path):
+    out = tmp_path / "report"
+    r = _run([scan, *NPY, *MATERIAL, "-o", out])
+    assert r.exit_code == 0, r.output
+    assert r.output.splitlines()[-1] == f"report: {out}"
+    assert {p.name for p in out.iterdir()} == REPORT
+    assert {p.name for p in tmp_path.iterdir()} == {"report"}  # nothing outside DIR
+    d = json.loads((out / "result.json").read_text())
+    assert d["sticky"] in (True, False, None) and "units" in d
+    assert (out / "summary.txt").read_text().splitlines()[0] == r.output.splitlines()[0]
+    for name in REPORT - {"result.json", "summary.txt"}:
+        assert (out / name).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def _one_line_error(r):
+    assert r.exit_code == 2, r.output
+    err = r.stderr.strip()
+    assert err.startswith("roughcontact: error: ") and "\n" not in err, err
+    assert "Traceback" not in r.output
+    assert r.exception is None or isinstance(r.exception, SystemExit)  # no uncaught error
+    return err
+
+
+def test_bad_input_one_line_exit_2(scan, tmp_path):
+    err = _one_line_error(
+        _run([scan, *NPY, "--modulus", "-10MPa", "--work-of-adhesion", "50mJ/m^2"])
+    )
+    assert "modulus" in err
+    err = _one_line_error(_run([scan, *NPY, "--modulus", "10 m", "--work-of-adhesion", "5mJ/m^2"]))
+    assert "modulus" in err
+    err = _one_line_error(_run([tmp_path / "missing.npy", *NPY, *MATERIAL]))
+    assert "missing.npy" in err
+    corrupt = tmp_path / "corrupt.npy"
+    corrupt.write_bytes(b"\x93NUMPY garbage that is not an array")
+    _one_line_error(_run([corrupt, *NPY, *MATERIAL]))
+    err = _one_line_error(_run([scan, *MATERIAL]))  # no pixel size: lattice units
+    assert "pixel_size" in err
+    _one_line_error(_run([scan, *NPY, *MATERIAL, "--detrend", "cubic"]))
+    _one_line_error(_run([scan, *NPY, *MATERIAL, "--fit-range", "1nm", "1 kg"]))
+    out = tmp_path / "afile"
+    out.write_text("")
+    _one_line_error(_run([scan, *NPY, *MATERIAL, "-o", out]))
+
+
+def test_unknown_channel_and_corrupted_instrument_file(tmp_path):
+    path = _real("nid-1.nid")
+    err = _one_line_error(_run([path, *MATERIAL, "--channel", "no such channel"]))
+    assert "channel" in err
+    for size in (5000, 100_000):  # truncated: header only, header and part of the data
+        bad = tmp_path / f"bad{size}.nid"
+        bad.write_bytes(path.read_bytes()[:size])
+        _one_line_error(_run([bad, *MATERIAL]))
+    garbage = tmp_path / "garbage.di"
+    garbage.write_bytes(b"\\*File list\r\n\x00\x01 not an AFM file")
+    _one_line_error(_run([garbage, *MATERIAL]))
+
+
+@pytest.mark.parametrize("name", ["di-1.di", "nid-1.nid", "dektak-1.csv"])
+def test_real_files(name, tmp_path):
+    path = _real(name)
+    local = tmp_path / name
+    shutil.copyfile(path, local)
+    r = _run([local, *MATERIAL, "--json"])
+    assert r.exit_code == 0, r.output
+    d = json.loads(r.output)
+    assert d["sticky"] in (True, False, None)
+    assert d["scan"]["dim"] == (1 if name.endswith(".csv") else 2)
+    assert d["scan"]["isotropy_assumed"] is name.endswith(".csv")
+    assert d["measured_scale"] >= 2 * max(d["scan"]["pixel_size"]) * (1 - 1e-12)
+    assert d["rms_slope"] > 0 and d["d_rep"] > 0 and 0 < d["hurst_stderr"] < 1
+    ref = stickiness_criterion(contact_modulus=1e7, work_of_adhesion=0.05,
+                               interaction_range=5e-10, rms_slope=d["rms_slope"],
+                               rms_curvature=d["rms_curvature"])  # fmt: skip
+    assert d["margin"] == pytest.approx(ref.margin, rel=1e-12)
+    text = _run([local, *MATERIAL])
+    assert text.exit_code == 0 and text.output.startswith(f"verdict: {d['verdict']}")
