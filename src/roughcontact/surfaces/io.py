@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import io as _io
 import os
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -43,7 +44,9 @@ def _read_array(p: Path, expected: str = _EXPECTED) -> np.ndarray:
             data = np.load(p, allow_pickle=False)
         else:
             text = p.read_text().replace(",", " ")
-            data = np.loadtxt(_io.StringIO(text), dtype=float)
+            with warnings.catch_warnings():  # an empty file: the shape check says it in one line
+                warnings.simplefilter("ignore", UserWarning)
+                data = np.loadtxt(_io.StringIO(text), dtype=float)
     except (OSError, ValueError, UnicodeDecodeError, EOFError) as exc:
         raise ParameterError(
             f"path {str(p)!r}: could not read heights ({exc}); expected {expected}"
