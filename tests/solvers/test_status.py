@@ -94,7 +94,12 @@ CASES = [
     (
         "load-control-beyond-pull-off",
         dict(interaction=SMOOTH, load=-1.0),
-        SolveStatus.NO_STABLE_STATE,
+        SolveStatus.DETACHED,
+    ),
+    (
+        "load-control-beyond-full-contact",
+        dict(interaction=HARD_CORE, load=10.0),
+        SolveStatus.FULL_CONTACT,
     ),
     (
         "load-control-inner-cap",

@@ -75,12 +75,13 @@ def solve_at_load(
         for d in [d for d in states if d not in offsets]:
             del states[d]
 
-    def finish(res, converged, message):
-        # an inner solve that failed keeps its own status and message
+    def finish(res, converged, message, failure=SolveStatus.NO_STABLE_STATE):
+        # an inner solve that failed keeps its own status and message; else ``failure``
+        # says which of the ways a load can be out of reach it is
         if not res.converged:
             status = res.status
         else:
-            status = SolveStatus.CONVERGED if converged else SolveStatus.NO_STABLE_STATE
+            status = SolveStatus.CONVERGED if converged else failure
         return dataclasses.replace(
             res,
             iterations=total["it"],
@@ -113,6 +114,7 @@ def solve_at_load(
                 return finish(
                     res_a, False, f"load {load:g} not reached: it is {res_a.load:g} at offset "
                     f"{d_a:g}, next to mean(heights) where the contact is complete",
+                    SolveStatus.FULL_CONTACT,
                 )  # fmt: skip
             d_b = 0.5 * (d_a + lowest)
         res_b = evaluate(d_b)
@@ -126,10 +128,16 @@ def solve_at_load(
             return finish(
                 res_b, False, f"no state carries load {load:g}: it stays {res_b.load:g} "
                 f"up to offset {d_b:g} (beyond the pull-off force?)",
+                SolveStatus.DETACHED,
             )  # fmt: skip
         d_a, f_a, res_a, step = d_b, f_b, res_b, 2.0 * step
     else:
-        return finish(res_b, False, f"load {load:g} not bracketed by offsets up to {d_b:g}")
+        return finish(
+            res_b,
+            False,
+            f"load {load:g} not bracketed by offsets up to {d_b:g}",
+            SolveStatus.NOT_BRACKETED,
+        )
     side = 0
     for _ in range(200):
         keep_only(d_a, d_b)

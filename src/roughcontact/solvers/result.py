@@ -31,9 +31,17 @@ class SolveStatus(enum.StrEnum):
     CALLBACK = "stopped_by_callback"
     #: The line search found no finite minimum, or no descent along the projected direction.
     LINE_SEARCH_FAILED = "line_search_failed"
-    #: Load control: no (stable) state carries the load (a jump of the load-offset curve,
-    #: beyond the pull-off force or full contact, or not bracketed).
+    #: Load control: no stable state carries the load: it jumps across it between two
+    #: offsets (an instability of the load-offset curve; follow it with offset control).
     NO_STABLE_STATE = "no_stable_state"
+    #: Load control: the load stays the same however far the surfaces separate (a tensile
+    #: load beyond the pull-off force).
+    DETACHED = "detached"
+    #: Load control: the load is not reached before the contact is complete (a hard core
+    #: at its lowest offset).
+    FULL_CONTACT = "full_contact"
+    #: Load control: no offset bracketing the load within 60 doublings of the search step.
+    NOT_BRACKETED = "not_bracketed"
 
 
 #: The numbers describing one solved state: the path datasets' per-step variables and,
