@@ -70,6 +70,7 @@ def test_json_keys_units_and_the_python_call(scan):
     assert d["inputs"]["interaction_range"] == pytest.approx(4e-10)
     assert d["inputs"]["kappa_rep"] == 2.5
     assert d["scan"]["pixel_size"] == pytest.approx([5e-9, 5e-9])
+    assert d["simulation"] is None
     ref = stickiness_criterion(contact_modulus=1e7, work_of_adhesion=0.05, kappa_rep=2.5,
                                interaction_range=4e-10, rms_slope=d["rms_slope"],
                                rms_curvature=d["rms_curvature"])  # fmt: skip
@@ -155,3 +156,58 @@ def test_real_files(name, tmp_path):
     assert d["margin"] == pytest.approx(ref.margin, rel=1e-12)
     text = _run([local, *MATERIAL])
     assert text.exit_code == 0 and text.output.startswith(f"verdict: {d['verdict']}")
+
+
+# l_a/a0 = w/(E* a0) = 0.05 at a0 = 0.3 nm: the paper's strong adhesion, which the
+# simulation handles (the rubber of MATERIAL has 16.7 and is refused)
+STIFF = ["--modulus", "100GPa", "--work-of-adhesion", "1.5J/m^2"]
+SIMULATE = ["--simulate", "--simulate-size", "64", "--simulate-seeds", "1"]
+
+
+@pytest.fixture(scope="module")
+def fine_scan(tmp_path_factory):
+    """A periodic 128^2 scan with 0.6 nm pixels (its Nyquist wavelength is 4 a0), in nm."""
+    h = rc.self_affine(128, hurst=0.8, rms_slope=0.1, short_cutoff=1.2, pixel_size=0.6, seed=5)
+    path = tmp_path_factory.mktemp("fine") / "fine.npy"
+    np.save(path, h)
+    return path
+
+
+FINE = ["--pixel-size", "0.6nm", "--height-unit", "nm", "--periodic", "--detrend", "height"]
+
+
+def test_simulate_json_text_and_report(fine_scan, tmp_path):
+    r = _run([fine_scan, *FINE, *STIFF, *SIMULATE, "--json"])
+    assert r.exit_code == 0, r.output
+    d = json.loads(r.output)
+    sim = d["simulation"]
+    py = rc.stick(fine_scan, pixel_size=0.6e-9, height_unit="nm", periodic=True,
+                  detrend="height", modulus="100 GPa", work_of_adhesion=1.5, simulate=True,
+                  simulate_size=64, simulate_seeds=1)  # fmt: skip
+    assert sim["seeds"][0]["kappa"] == pytest.approx(py.simulation.runs[0].kappa, rel=1e-9)
+    assert sim["verdict"] == py.simulation.verdict == "sticky"
+    assert sim["surface"]["size"] == 64 and len(sim["seeds"]) == 1
+    assert sim["interaction"]["adhesion_length_over_a0"] == pytest.approx(0.05)
+    assert sim["interaction"]["range"] == pytest.approx((24 * 0.3e-9 * 0.05 * 0.3e-9) ** 0.5)
+    seed = sim["seeds"][0]
+    assert seed["pull_off_pressure"] == pytest.approx(seed["pull_off"] * 1e11)  # E* in Pa
+    assert d["units"]["simulation.seeds.pull_off_pressure"].startswith("Pa")
+    out = tmp_path / "report"
+    text = _run([fine_scan, *FINE, *STIFF, *SIMULATE, "-o", out])
+    assert text.exit_code == 0, text.output
+    lines = text.output.splitlines()
+    assert any(line.startswith("simulated: sticky over 1 of 1 seeds") for line in lines)
+    assert any("sqrt(24 a0 l_a) = 0.329 nm" in line for line in lines)
+    assert any(line.startswith("per seed kappa") and " Pa" in line for line in lines)
+    assert {p.name for p in out.iterdir()} == REPORT | {"contact_map.png"}
+    assert (out / "contact_map.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert json.loads((out / "result.json").read_text())["simulation"]["verdict"] == "sticky"
+
+
+def test_simulate_bad_options_one_line(fine_scan):
+    for option, value in (("--simulate-size", "32"), ("--simulate-size", "x"),
+                          ("--simulate-seeds", "0"), ("--simulate-seeds", "100")):  # fmt: skip
+        err = _one_line_error(_run([fine_scan, *FINE, *STIFF, "--simulate", option, value]))
+        assert option in err
+    err = _one_line_error(_run([fine_scan, *FINE, *MATERIAL, "--simulate"]))
+    assert "l_a/a0" in err and "16.7" in err

@@ -11,11 +11,13 @@ group turns :class:`roughcontact.ParameterError` into it).
 from __future__ import annotations
 
 import json
+import sys
 
 import click
 
-from .._validate import DPI
+from .._validate import DPI, click_check
 from ..topography.prepare import DETREND_MODES
+from ..topography.simulate import ADHESION_RANGE, SEEDS, SIZE
 
 __all__ = ["stick"]
 
@@ -120,10 +122,34 @@ def _pixel_size(text):
     show_default=True,
     help=f"PNG resolution with -o ({DPI.accepted}).",
 )
+@click.option(
+    "--simulate",
+    is_flag=True,
+    help="Also run the paper's simulation on synthetic surfaces continuing the scan's "
+    "spectrum to a0 (seconds to minutes; needs l_a/a0 = w/(E* a0) in "
+    f"{ADHESION_RANGE.accepted[3:]}).",
+)
+@click.option(
+    "--simulate-size",
+    type=int,
+    default=256,
+    show_default=True,
+    callback=click_check(SIZE),
+    help=f"Sites per axis of the synthetic surfaces ({SIZE.accepted}).",
+)
+@click.option(
+    "--simulate-seeds",
+    type=int,
+    default=3,
+    show_default=True,
+    callback=click_check(SEEDS),
+    help=f"Number of synthetic surfaces ({SEEDS.accepted}).",
+)
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object (SI units).")
 def stick(scan, channel, modulus, work, poisson, range_, tip_radius, reliability_cutoff,
           detrend, kappa_rep, atomic_spacing, pixel_size, height_unit, periodic, fit_range,
-          hurst_sigmas, out_dir, formats, dpi, as_json):  # fmt: skip
+          hurst_sigmas, out_dir, formats, dpi, simulate, simulate_size, simulate_seeds,
+          as_json):  # fmt: skip
     """Is the surface in SCAN sticky? (Pastewka & Robbins 2014, Eq. 10.)
 
     SCAN is an instrument file (AFM, interferometer, stylus profilometer; read with
@@ -133,6 +159,11 @@ def stick(scan, channel, modulus, work, poisson, range_, tip_radius, reliability
     --atomic-spacing. The verdict is "sticky" or "not sticky" when it holds for every
     smallest roughness scale in between (and every H within its uncertainty), else
     "depends on roughness below X".
+
+    --simulate adds the measured answer of Pastewka & Robbins' simulation: synthetic
+    surfaces with the scan's H and its h'rms extrapolated to 4 a0, the paper's 9-3 wall
+    (range sqrt(24 a0 l_a), not --range), kappa at 1 % contact over the seeds. It takes
+    seconds (--simulate-size 64) to minutes (256, the default).
     """
     from ..topography.report import summary, write_report
     from ..topography.verdict import stick as run
@@ -156,6 +187,10 @@ def stick(scan, channel, modulus, work, poisson, range_, tip_radius, reliability
         reliability_cutoff=reliability_cutoff,
         fit_range=_fit_range(fit_range),
         hurst_sigmas=hurst_sigmas,
+        simulate=simulate,
+        simulate_size=simulate_size,
+        simulate_seeds=simulate_seeds,
+        simulate_progress=_progress if simulate and sys.stderr.isatty() else None,
     )
     if out_dir is not None:
         write_report(result, out_dir, formats=formats, dpi=dpi)
@@ -166,6 +201,11 @@ def stick(scan, channel, modulus, work, poisson, range_, tip_radius, reliability
         click.echo(line)
     if out_dir is not None:
         click.echo(f"report: {out_dir}")
+
+
+def _progress(k, n):
+    """One line per realisation on a terminal (stdout stays the result)."""
+    click.echo(f"simulating surface {k}/{n} ...", err=True)
 
 
 def _fit_range(values):

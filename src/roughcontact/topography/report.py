@@ -4,6 +4,8 @@
   is measured and what extrapolated, and the scale the verdict depends on;
 * :func:`figure_scan`, :func:`figure_psd`, :func:`figure_slope`, :func:`figure_margin`
   -- matplotlib figures (imported only here, no pyplot state);
+* :func:`simulation_summary`, :func:`figure_contact_map` -- the simulation's lines and
+  its contact map (``stick(..., simulate=True)``);
 * :func:`write_report` -- ``result.json`` and the figures in one directory, each file
   written atomically (:func:`roughcontact._io.write_bytes_atomic`).
 
@@ -23,10 +25,12 @@ from .verdict import StickResult, _length_text
 
 __all__ = [
     "FIGURES",
+    "figure_contact_map",
     "figure_margin",
     "figure_psd",
     "figure_scan",
     "figure_slope",
+    "simulation_summary",
     "summary",
     "write_report",
 ]
@@ -60,7 +64,30 @@ def summary(result: StickResult) -> list[str]:
             f"the verdict depends on roughness below {_length_text(v.depends_below)}, "
             f"below the measured {_length_text(lam_c)}: measure finer or with a sharper tip"
         )
+    if result.simulation is not None:
+        lines += simulation_summary(result.simulation)
     return lines
+
+
+def simulation_summary(sim) -> list[str]:
+    """Three lines on the simulation of :mod:`roughcontact.topography.simulate`."""
+    s, i, inv = sim.surface, sim.interaction, sim.inverse_kappa
+    interval = "" if inv.n < 2 else f", 1/kappa in [{inv.low:.3g}, {inv.high:.3g}]"
+    seeds = "; ".join(
+        f"{r.kappa:.3g} ({r.kappa_rep:.3g}, {r.kappa_att:.3g})" if not r.error else "failed"
+        for r in sim.runs
+    )
+    pull = sim.pull_off_pressure
+    return [
+        f"simulated: {sim.verdict} over {inv.n} of {len(sim.runs)} seeds{interval}; "
+        f"Eq. 10 on the same surfaces: {sim.predicted_verdict}",
+        f"simulation: {s['size']}^2 sites of a0 = {_length_text(s['atomic_spacing'])}, "
+        f"lambda_s = {s['short_cutoff_over_a0']:g} a0, H = {s['hurst']:.2f}, "
+        f"h'rms = {s['rms_slope']:.3g}; 9-3 wall l_a/a0 = {i['adhesion_length_over_a0']:.3g}, "
+        f"range sqrt(24 a0 l_a) = {_length_text(i['range'])} (not Delta_r)",
+        f"per seed kappa (kappa_rep, kappa_att) at A_rep = 1 %: {seeds}; pull-off pressure "
+        + (f"{pull:.3g} Pa" if np.isfinite(pull) else "not measured"),
+    ]
 
 
 # --------------------------------------------------------------------------- figures
@@ -190,12 +217,27 @@ FIGURES = {
 }
 
 
+def figure_contact_map(result: StickResult):
+    """Repulsive (orange) and attractive (black) sites of the first simulated seed at
+    A_rep ~ 1 % (Fig. 1's style, :func:`roughcontact.plot.figure1`); None if none kept."""
+    from ..plot import figure1
+
+    sim = result.simulation
+    found = None if sim is None else sim.contact_map
+    if found is None:
+        return None
+    seed, pressure = found
+    la = sim.interaction["adhesion_length_over_a0"]
+    label = rf"seed {seed}, $\ell_a/a_0 = {la:.3g}$ ({sim.verdict})"
+    return figure1([pressure], labels=[label], target_area=0.01)
+
+
 def write_report(result: StickResult, out_dir, *, formats=("png",), dpi: int = 150) -> dict:
     """Write ``result.json`` and the figures into ``out_dir`` (created if needed).
 
     Only these files are written, each atomically: ``result.json`` (``to_dict()``),
     ``summary.txt`` (:func:`summary`) and ``scan``, ``psd``, ``slope``, ``margin`` in
-    every format.
+    every format; with a simulation also ``contact_map`` (:func:`figure_contact_map`).
 
     Parameters
     ----------
@@ -229,8 +271,13 @@ def write_report(result: StickResult, out_dir, *, formats=("png",), dpi: int = 1
             out / "summary.txt", ("\n".join(summary(result)) + "\n").encode()
         ),
     }
-    for name, make in FIGURES.items():
+    figures = dict(FIGURES)
+    if result.simulation is not None:
+        figures["contact_map"] = figure_contact_map
+    for name, make in figures.items():
         fig = make(result)
+        if fig is None:
+            continue
         written[name] = []
         for fmt in formats:
             buffer = io.BytesIO()

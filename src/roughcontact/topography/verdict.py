@@ -38,6 +38,7 @@ import numpy as np
 from .._validate import ParameterError, json_safe, positive
 from ..criterion import parse_quantity, stickiness_criterion
 from ..theory.pastewka_robbins import KAPPA_REP
+from .simulate import SIMULATION_UNITS
 from .statistics import ScaleStatistics, scale_statistics
 
 __all__ = ["UNITS", "StickResult", "Verdict", "stick", "stickiness_verdict"]
@@ -333,6 +334,7 @@ UNITS = {
     "inputs.adhesion_length": "m (w/E*)",
     "criterion_measured.*": "SI: Pa, J/m^2, m, 1/m; see roughcontact criterion --json",
     "criterion_atomic.*": "SI: Pa, J/m^2, m, 1/m; see roughcontact criterion --json",
+    **SIMULATION_UNITS,
 }
 
 
@@ -352,6 +354,9 @@ class StickResult:
         The material and analysis parameters in SI units.
     notes : tuple of str
         What the user should know about how the numbers were obtained.
+    simulation : Simulation or None
+        The paper's simulation on synthetic surfaces continuing the scan's spectrum
+        (:mod:`roughcontact.topography.simulate`; None unless ``simulate=True``).
     """
 
     topography: object = field(repr=False)
@@ -359,6 +364,7 @@ class StickResult:
     verdict: Verdict
     inputs: dict
     notes: tuple
+    simulation: object = None
 
     @property
     def sticky(self) -> bool | None:
@@ -474,6 +480,7 @@ class StickResult:
             "criterion_measured": crit_m.to_dict(),
             "criterion_atomic": crit_a.to_dict(),
             "notes": list(self.notes),
+            "simulation": None if self.simulation is None else self.simulation.to_dict(),
             "units": dict(UNITS),
         }
         return json_safe(d)
@@ -503,6 +510,10 @@ def stick(
     reliability_cutoff=None,
     fit_range=None,
     hurst_sigmas: float = HURST_SIGMAS,
+    simulate: bool = False,
+    simulate_size: int = 256,
+    simulate_seeds: int = 3,
+    simulate_progress=None,
 ) -> StickResult:
     """Is this measured surface sticky? Pastewka & Robbins (2014), Eq. 10, for a scan.
 
@@ -551,6 +562,16 @@ def stick(
         Wavelengths [m] of the Hurst fit (default: see ``scale_statistics``).
     hurst_sigmas : float
         Half-width of the H band in standard errors, default 2 (about 95 %).
+    simulate : bool
+        Also run the paper's simulation on synthetic surfaces continuing the scan's
+        spectrum down to ``atomic_spacing`` (:func:`~.simulate.simulate_stickiness`;
+        seconds to minutes; needs ``l_a/a0 = w/(E* a0)`` in
+        :data:`~.simulate.ADHESION_RANGE`).
+    simulate_size, simulate_seeds : int
+        Sites per axis of the synthetic surfaces (default 256, in [64, 1024]) and their
+        number (default 3, in [1, 32]).
+    simulate_progress : callable, optional
+        ``simulate_progress(k, seeds)`` before realisation k.
 
     Returns
     -------
@@ -560,6 +581,10 @@ def stick(
     from .topography import Topography
 
     E = positive("modulus", parse_quantity(modulus, "pressure", "modulus"))
+    if simulate:
+        from .simulate import check_options
+
+        check_options(simulate_size, simulate_seeds)  # before any work
     tip = _length("tip_radius", tip_radius)
     given_cutoff = _length("reliability_cutoff", reliability_cutoff)
     if tip is not None and given_cutoff is not None:
@@ -622,12 +647,26 @@ def stick(
         "detrend": detrend,
         "hurst_sigmas": float(hurst_sigmas),
     }
+    simulation = None
+    if simulate:
+        from .simulate import simulate_stickiness
+
+        simulation = simulate_stickiness(
+            stats,
+            contact_modulus=m.contact_modulus,
+            work_of_adhesion=m.work_of_adhesion,
+            atomic_spacing=m.atomic_spacing,
+            size=simulate_size,
+            seeds=simulate_seeds,
+            progress=simulate_progress,
+        )
     return StickResult(
         topography=topo,
         statistics=stats,
         verdict=v,
         inputs=inputs,
         notes=tuple(notes + _notes(stats, v, m)),
+        simulation=simulation,
     )
 
 

@@ -1,0 +1,529 @@
+r"""The paper's simulation for a measured surface: is it sticky, measured on the lattice?
+
+:func:`roughcontact.stick` answers with Eq. 10 of Pastewka & Robbins (2014) from a scan's
+statistics. With ``simulate=True`` it also runs the paper's simulation on synthetic
+surfaces that continue the measured spectrum down to the interaction scale
+(:func:`simulate_stickiness`):
+
+* **Surface** (lattice units, a0 = ``atomic_spacing``): ``size`` x ``size`` sites, a
+  self-affine spectrum (:func:`roughcontact.self_affine`) with the scan's fitted Hurst
+  exponent H (clipped into [:data:`HURST_MIN`, 1] when the fit is outside, said in the
+  notes), the short cutoff lambda_s = :data:`SHORT_CUTOFF` a0 (the paper's smallest),
+  the long cutoff lambda_L = ``size`` a0/2 (the paper's L = 2 lambda_L) and the rms slope
+  h'_rms of the scan extrapolated down to lambda_s
+  (:meth:`ScaleStatistics.extrapolated_at`, the same numbers as the Eq. 10 verdict). The
+  synthetic surface is a window of ``size`` a0 onto the smallest scales: Eqs. 6-10 depend
+  on h'_rms, H and lambda_s, not on the long scales it leaves out.
+* **Interaction**: the paper's smoothed 9-3 wall with ``l_a = w/E*``
+  (:meth:`roughcontact.SmoothLJ93.from_adhesion_length`): stiffness k = E*/(2 a0) and
+  range ``sqrt(24 a0 l_a)``, which is *not* the Delta_r of the Eq. 10 verdict (the
+  interaction range the user gave). ``l_a/a0`` must lie in :data:`ADHESION_RANGE`: at
+  ``l_a/a0 = 0.1`` (and above) the approach of a surface with h'_rms = 0.1 measured here
+  is pulled into an adhered state whose repulsive area never reaches 1 % over the
+  offsets below; the paper's largest is 0.05.
+* **Path**: an elastic substrate of thickness ``size`` a0 on a rigid base (nu = 1/2,
+  as the study of :mod:`roughcontact.studies` runs the paper), approached at offsets in
+  bearing-area units (:func:`roughcontact.solvers.offsets.relative_offsets`: the
+  fraction of A0 the undeformed surfaces would overlap) after three lead-in offsets
+  beyond the reach of the attraction, until A_rep reaches :data:`UNTIL_AREA`, then
+  retracted through the same offsets (pull-off force).
+* **Analysis**: :func:`roughcontact.analysis.path_analysis.analyze_path` at
+  A_rep = 1 % of A0 with the hard-wall reference: kappa, kappa_rep, kappa_att, the
+  measured verdict (sticky iff 1/kappa < 0) and Eq. 10's prediction on the same surface
+  (``predicted_verdict``). A seed whose steps around 1 % did not converge, or whose path
+  never reaches 1 %, is recorded with its error and left out of the combination.
+* **Over seeds**: :func:`roughcontact.analysis.stickiness.inverse_mean` of 1/kappa (and of
+  the predicted 1/kappa): sticky iff its confidence interval lies below 0, not sticky
+  above, else undecided.
+
+Lengths of the results are in SI (m) unless named ``*_over_a0``; loads per A0 in units
+of E* (``pull_off``) and in Pa (``pull_off_pressure = pull_off E*``). The simulation
+takes seconds (64^2) to minutes (256^2, the default, a few seeds) on a CPU.
+
+Reference: L. Pastewka and M. O. Robbins, PNAS 111, 3298 (2014), Methods, Eqs. 2-10.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .._validate import HURST, ParameterError, Range, json_safe
+
+__all__ = [
+    "ADHESION_RANGE",
+    "SEEDS",
+    "SIMULATION_UNITS",
+    "SIZE",
+    "SeedRun",
+    "Simulation",
+    "check_options",
+    "simulate_stickiness",
+    "synthetic_surface",
+]
+
+#: Grid size n of the synthetic surface (sites per axis). Below 64 the 1 % contact area
+#: holds too few sites; above 1024 a CPU needs hours.
+SIZE = Range(64, 1024, integer=True)
+#: Number of surface realisations (seeds 1, 2, ...).
+SEEDS = Range(1, 32, integer=True)
+#: l_a/a0 = w/(E* a0) the simulation handles (module docstring: measured limit).
+ADHESION_RANGE = Range(1e-5, 0.05)
+#: lambda_s/a0 of the synthetic surface: the paper's smallest short cutoff.
+SHORT_CUTOFF = 4.0
+#: Smallest Hurst exponent of the synthetic surface (``self_affine`` takes (0, 1]).
+HURST_MIN = 0.05
+#: A_rep/A0 of the analysis (the paper's 1 %).
+TARGET_AREA = 0.01
+#: The approach stops at the first step with A_rep/A0 at least this (1 % is bracketed).
+UNTIL_AREA = 0.015
+#: Offsets as bearing-area fractions of A0 (A_rep/A0 from ~1e-4 to a few %, continued to 0.2
+#: for strongly adhesive surfaces whose repulsive area grows slowly).
+BEARING_AREA = (0.0, 1e-4, 2e-4, 5e-4, 1e-3, 2e-3, 3e-3, 4e-3, 5e-3, 6e-3, 7e-3, 8.5e-3,
+                0.01, 0.012, 0.015, 0.02, 0.025, 0.03, 0.04, 0.05, 0.06, 0.08, 0.1, 0.12,
+                0.15, 0.2)  # fmt: skip
+#: Solver tolerance (largest force imbalance per site / E*) and iteration cap.
+TOL, MAX_ITER = 1e-7, 20000
+
+
+def _lead_in(range_over_a0: float) -> tuple:
+    """Lead-in offsets [a0 above the first contact]: the approach starts beyond the
+    attraction's reach (so jumps into contact are followed) and the retraction returns
+    there (so the surfaces separate and the pull-off force is measured)."""
+    return (2.0 + 2.0 * range_over_a0, 1.0 + range_over_a0, 0.5)
+
+
+def check_options(size, seeds) -> tuple[int, int]:
+    """``(size, seeds)`` checked against :data:`SIZE` and :data:`SEEDS`."""
+    return SIZE.check("simulate_size", size), SEEDS.check("simulate_seeds", seeds)
+
+
+def _adhesion_over_a0(work_of_adhesion, contact_modulus, atomic_spacing) -> float:
+    la = work_of_adhesion / contact_modulus / atomic_spacing
+    if not ADHESION_RANGE.contains(la):
+        raise ParameterError(
+            f"simulate: the adhesion length l_a/a0 = work_of_adhesion/(E* atomic_spacing) = "
+            f"{la:.3g} must be {ADHESION_RANGE.accepted} for the simulation (the paper's "
+            f"smoothed 9-3 wall; l_a/a0 << 1 for real solids): use Eq. 10 alone, or check "
+            f"work_of_adhesion, modulus and atomic_spacing"
+        )
+    return la
+
+
+def synthetic_surface(stats, *, atomic_spacing: float, size: int = 256, seed=1):
+    """The synthetic surface of seed ``seed`` and how it was chosen (module docstring).
+
+    Parameters
+    ----------
+    stats : ScaleStatistics
+        The scan's statistics (SI).
+    atomic_spacing : float
+        a0 [m], the lattice spacing.
+    size : int
+        n (sites per axis), in :data:`SIZE`.
+    seed : int
+        Seed of :func:`roughcontact.self_affine`.
+
+    Returns
+    -------
+    heights : ndarray, shape (n, n)
+        Heights in units of a0.
+    params : dict
+        ``hurst`` (used), ``hurst_fitted``, ``hurst_clipped``, ``rms_slope``,
+        ``short_cutoff``, ``long_cutoff`` (a0).
+    """
+    from ..surfaces import self_affine
+
+    n = SIZE.check("simulate_size", size)
+    a0 = float(atomic_spacing)
+    fitted = float(stats.fit.hurst)
+    H = min(max(fitted, HURST_MIN), HURST.hi)
+    slope = stats.extrapolated_at(SHORT_CUTOFF * a0)[0]
+    params = {
+        "hurst": H,
+        "hurst_fitted": fitted,
+        "hurst_clipped": H != fitted,
+        "rms_slope": float(slope),
+        "short_cutoff": SHORT_CUTOFF,
+        "long_cutoff": n / 2,
+    }
+    h = self_affine((n, n), hurst=H, rms_slope=slope, short_cutoff=SHORT_CUTOFF,
+                    long_cutoff=n / 2, seed=seed)  # fmt: skip
+    return h, params
+
+
+@dataclass(frozen=True)
+class SeedRun:
+    """One realisation: its path analysed at A_rep = 1 % (dimensionless unless stated).
+
+    ``kappa``, ``kappa_rep``, ``kappa_att``, ``inverse_kappa`` and ``verdict`` are the
+    measured ones (:class:`~roughcontact.analysis.path_analysis.PathAnalysis`),
+    ``predicted_kappa``/``predicted_verdict`` Eq. 10's on the same surface (with the
+    measured kappa_rep and d_rep); ``attractive_area`` per A0; ``pull_off`` per A0 in
+    units of E*, ``pull_off_pressure`` in Pa (NaN: the retraction did not separate the
+    surfaces). ``error`` is empty, or why the seed has no analysis (steps around 1 % not
+    converged, 1 % not reached, a failed step). ``path`` (the xarray path), ``heights``
+    (a0), ``analysis`` and ``pressure_map`` (the approach state nearest 1 %, units of E*;
+    None except for the first seed) are kept for inspection, not serialised.
+    """
+
+    seed: int
+    kappa: float
+    kappa_rep: float
+    kappa_att: float
+    inverse_kappa: float
+    verdict: str
+    predicted_kappa: float
+    predicted_verdict: str
+    attractive_area: float
+    pull_off: float
+    pull_off_pressure: float
+    steps: int
+    steps_not_converged: int
+    seconds: float
+    error: str = ""
+    warnings: tuple = ()
+    path: object = field(default=None, repr=False, compare=False)
+    heights: object = field(default=None, repr=False, compare=False)
+    analysis: object = field(default=None, repr=False, compare=False)
+    pressure_map: object = field(default=None, repr=False, compare=False)
+
+    def to_dict(self) -> dict:
+        d = {f.name: getattr(self, f.name) for f in dataclasses.fields(self) if f.repr}
+        d["warnings"] = list(self.warnings)
+        return json_safe(d)
+
+
+@dataclass(frozen=True)
+class Simulation:
+    """The simulation of :func:`simulate_stickiness` (SI lengths; see the module docstring).
+
+    ``verdict`` ("sticky", "not sticky", "undecided") is the measured one over the seeds,
+    from ``inverse_kappa`` (:class:`~roughcontact.analysis.stickiness.InverseMean` of the
+    per-seed kappa); ``predicted_verdict`` Eq. 10's from ``predicted_inverse_kappa``.
+    ``surface`` and ``interaction`` describe the synthetic system; ``runs`` the seeds.
+    """
+
+    surface: dict
+    interaction: dict
+    path: dict
+    runs: tuple
+    inverse_kappa: object
+    predicted_inverse_kappa: object
+    verdict: str
+    predicted_verdict: str
+    notes: tuple
+    seconds: float
+
+    @property
+    def sticky(self) -> bool | None:
+        """True (sticky), False (not sticky) or None (undecided)."""
+        return {"sticky": True, "not sticky": False}.get(self.verdict)
+
+    @property
+    def pull_off_pressure(self) -> float:
+        """Mean pull-off pressure over the seeds that measured one [Pa] (NaN: none)."""
+        values = [r.pull_off_pressure for r in self.runs if math.isfinite(r.pull_off_pressure)]
+        return float(np.mean(values)) if values else math.nan
+
+    @property
+    def contact_map(self):
+        """``(seed, pressure)`` of the first seed's approach state nearest 1 %, or None."""
+        for r in self.runs:
+            if r.pressure_map is not None:
+                return r.seed, r.pressure_map
+        return None
+
+    def to_dict(self) -> dict:
+        inv, pred = self.inverse_kappa, self.predicted_inverse_kappa
+        d = {
+            "verdict": self.verdict,
+            "sticky": self.sticky,
+            "predicted_verdict": self.predicted_verdict,
+            "kappa": inv.value,
+            "inverse_kappa": inv.mean,
+            "inverse_kappa_interval": [inv.low, inv.high],
+            "predicted_kappa": pred.value,
+            "predicted_inverse_kappa": pred.mean,
+            "predicted_inverse_kappa_interval": [pred.low, pred.high],
+            "confidence": inv.confidence,
+            "seeds_analysed": inv.n,
+            "pull_off_pressure": self.pull_off_pressure,
+            "target_area": TARGET_AREA,
+            "surface": dict(self.surface),
+            "interaction": dict(self.interaction),
+            "path": dict(self.path),
+            "seeds": [r.to_dict() for r in self.runs],
+            "seconds": self.seconds,
+            "notes": list(self.notes),
+        }
+        return json_safe(d)
+
+
+#: The unit of every number of ``Simulation.to_dict()`` under the key ``simulation``.
+SIMULATION_UNITS = {
+    "simulation.kappa": "1 (h'rms E* A_rep/N at A_rep = 1 %, 1/mean of 1/kappa over seeds)",
+    "simulation.inverse_kappa": "1 (mean over seeds)",
+    "simulation.inverse_kappa_interval": "1 (confidence interval of the mean)",
+    "simulation.predicted_kappa": "1 (Eq. 10's, 1/mean of 1/kappa over seeds)",
+    "simulation.predicted_inverse_kappa": "1",
+    "simulation.predicted_inverse_kappa_interval": "1",
+    "simulation.confidence": "1 (two-sided level of the intervals)",
+    "simulation.seeds_analysed": "realisations",
+    "simulation.pull_off_pressure": "Pa (mean over seeds)",
+    "simulation.target_area": "1 (A_rep/A0)",
+    "simulation.surface.size": "grid points per axis",
+    "simulation.surface.atomic_spacing": "m (a0, the lattice spacing)",
+    "simulation.surface.physical_size": "m (size a0)",
+    "simulation.surface.short_cutoff": "m (lambda_s)",
+    "simulation.surface.long_cutoff": "m (lambda_L)",
+    "simulation.surface.short_cutoff_over_a0": "a0",
+    "simulation.surface.long_cutoff_over_a0": "a0",
+    "simulation.surface.hurst": "1 (used)",
+    "simulation.surface.hurst_fitted": "1 (the scan's fit)",
+    "simulation.surface.rms_slope": "1 (h'rms extrapolated to lambda_s)",
+    "simulation.interaction.adhesion_length": "m (l_a = w/E*)",
+    "simulation.interaction.adhesion_length_over_a0": "1 (l_a/a0)",
+    "simulation.interaction.range": "m (sqrt(24 a0 l_a), the wall's; not inputs.interaction_range)",
+    "simulation.interaction.range_over_a0": "a0",
+    "simulation.interaction.stiffness": "Pa/m (E*/(2 a0))",
+    "simulation.interaction.work_of_adhesion": "J/m^2",
+    "simulation.interaction.contact_modulus": "Pa",
+    "simulation.path.bearing_area": "1 (fractions of A0 overlapped by the undeformed surfaces)",
+    "simulation.path.lead_in": "a0 (above the first contact)",
+    "simulation.path.until_area": "1 (A_rep/A0 that ends the approach)",
+    "simulation.path.tol": "E* (largest force imbalance per site)",
+    "simulation.path.max_iter": "iterations",
+    "simulation.path.thickness": "m (substrate on a rigid base)",
+    "simulation.path.poisson": "1",
+    "simulation.seeds.seed": "1 (seed of the surface)",
+    "simulation.seeds.kappa": "1",
+    "simulation.seeds.kappa_rep": "1",
+    "simulation.seeds.kappa_att": "1",
+    "simulation.seeds.inverse_kappa": "1",
+    "simulation.seeds.predicted_kappa": "1",
+    "simulation.seeds.attractive_area": "1 (A_att/A0 at A_rep = 1 %)",
+    "simulation.seeds.pull_off": "E* (pull-off force per A0)",
+    "simulation.seeds.pull_off_pressure": "Pa (pull_off E*)",
+    "simulation.seeds.steps": "path steps",
+    "simulation.seeds.steps_not_converged": "path steps",
+    "simulation.seeds.seconds": "s",
+    "simulation.seconds": "s",
+}
+
+
+class _ApproachFields:
+    """Keep the pressure of the approach state nearest :data:`TARGET_AREA` (Fig. 1's
+    choice, as :class:`roughcontact.studies.task.AreaFields`), ignoring the retraction:
+    the approach ends at the first state with A_rep >= :data:`UNTIL_AREA`."""
+
+    def __init__(self, approach_steps):
+        from ..studies.task import AreaFields
+
+        self.nearest = AreaFields([TARGET_AREA], approach_steps)
+        self.done = False
+
+    def __call__(self, step, n_steps, result):
+        if self.done:
+            return
+        self.nearest(step, n_steps, result)
+        self.done = result.repulsive_area >= UNTIL_AREA
+
+    def pressure(self):
+        fields = self.nearest.fields()
+        return next(iter(fields.values()))[0] if fields else None
+
+
+def _run_seed(seed, heights, law, modulus, keep_map) -> SeedRun:
+    from ..analysis.path_analysis import UnconvergedPathError, analyze_path
+    from ..elastic import Substrate
+    from ..solvers import PathError, approach_retract
+    from ..solvers.offsets import relative_offsets
+
+    t0 = time.perf_counter()
+    n = heights.shape[0]
+    substrate = Substrate((n, n), contact_modulus=1.0, thickness=float(n), poisson=0.5,
+                          base="bonded")  # fmt: skip
+    lead_in = relative_offsets(heights, _lead_in(law.range), "length", law)
+    body = relative_offsets(heights, BEARING_AREA, "bearing_area", law)
+    offsets = np.concatenate((lead_in, body))
+    fields = _ApproachFields(offsets.size) if keep_map else None
+    error = ""
+    try:
+        ds = approach_retract(
+            heights,
+            substrate,
+            law,
+            offsets=offsets,
+            retract=True,
+            tol=TOL,
+            max_iter=MAX_ITER,
+            until_area=UNTIL_AREA,
+            progress=fields,
+        )
+    except PathError as err:  # a non-finite state: the steps before it are kept
+        ds, error = err.partial, f"path stopped: {err}"
+    analysis = None
+    if not error:
+        try:
+            analysis = analyze_path(ds, target_area=TARGET_AREA, heights=heights,
+                                    substrate=substrate, hard_wall_reference=True)  # fmt: skip
+        except UnconvergedPathError as err:
+            error = f"not converged: {err}"
+        except ParameterError as err:  # 1 % not reached
+            error = str(err)
+    a, nan = analysis, math.nan
+    pull_off = float(ds.attrs.get("pull_off", nan)) if ds is not None else nan
+    converged = np.asarray(ds["converged"].values, dtype=bool) if ds is not None else np.ones(0)
+    return SeedRun(
+        seed=int(seed),
+        kappa=a.kappa if a else nan,
+        kappa_rep=a.kappa_rep if a else nan,
+        kappa_att=a.kappa_att if a else nan,
+        inverse_kappa=a.inverse_kappa if a else nan,
+        verdict=a.verdict if a else "",
+        predicted_kappa=a.predicted_kappa if a else nan,
+        predicted_verdict=a.predicted_verdict if a else "",
+        attractive_area=a.attractive_area if a else nan,
+        pull_off=pull_off,
+        pull_off_pressure=pull_off * modulus,
+        steps=int(converged.size),
+        steps_not_converged=int((~converged).sum()),
+        seconds=time.perf_counter() - t0,
+        error=error.splitlines()[0] if error else "",
+        warnings=tuple(a.warnings) if a else (),
+        path=ds,
+        heights=heights,
+        analysis=a,
+        pressure_map=fields.pressure() if fields is not None else None,
+    )
+
+
+def simulate_stickiness(
+    stats,
+    *,
+    contact_modulus: float,
+    work_of_adhesion: float,
+    atomic_spacing: float,
+    size: int = 256,
+    seeds: int = 3,
+    progress=None,
+) -> Simulation:
+    """Run the paper's simulation on synthetic surfaces continuing the scan's spectrum.
+
+    Parameters
+    ----------
+    stats : ScaleStatistics
+        The scan's statistics (SI; :func:`~roughcontact.topography.scale_statistics`).
+    contact_modulus : float
+        E* [Pa].
+    work_of_adhesion : float
+        w [J/m^2].
+    atomic_spacing : float
+        a0 [m]: the lattice spacing and the wall's equilibrium distance.
+    size : int
+        n, sites per axis, in :data:`SIZE`.
+    seeds : int
+        Realisations (seeds 1 ... ``seeds``), in :data:`SEEDS`.
+    progress : callable, optional
+        ``progress(k, seeds)`` before realisation k (1-based).
+
+    Returns
+    -------
+    Simulation
+
+    Raises
+    ------
+    ParameterError
+        For ``size``/``seeds`` outside their ranges, or l_a/a0 outside
+        :data:`ADHESION_RANGE`.
+    """
+    from ..analysis.stickiness import inverse_mean
+    from ..interactions import SmoothLJ93
+
+    n, count = check_options(size, seeds)
+    E, w, a0 = float(contact_modulus), float(work_of_adhesion), float(atomic_spacing)
+    la = _adhesion_over_a0(w, E, a0)
+    t0 = time.perf_counter()
+    law = SmoothLJ93.from_adhesion_length(la)
+    runs, surface = [], None
+    for k in range(1, count + 1):
+        if progress is not None:
+            progress(k, count)
+        heights, surface = synthetic_surface(stats, atomic_spacing=a0, size=n, seed=k)
+        runs.append(_run_seed(k, heights, law, E, keep_map=k == 1))
+    inv = inverse_mean([r.kappa for r in runs])
+    pred = inverse_mean([r.predicted_kappa for r in runs])
+    surface_d = {
+        "size": n,
+        "atomic_spacing": a0,
+        "physical_size": n * a0,
+        "short_cutoff": SHORT_CUTOFF * a0,
+        "long_cutoff": surface["long_cutoff"] * a0,
+        "short_cutoff_over_a0": SHORT_CUTOFF,
+        "long_cutoff_over_a0": surface["long_cutoff"],
+        "hurst": surface["hurst"],
+        "hurst_fitted": surface["hurst_fitted"],
+        "rms_slope": surface["rms_slope"],
+    }
+    interaction = {
+        "law": "lj93smooth",
+        "adhesion_length": la * a0,
+        "adhesion_length_over_a0": la,
+        "range": law.range * a0,
+        "range_over_a0": law.range,
+        "stiffness": law.stiffness * E / a0,
+        "work_of_adhesion": w,
+        "contact_modulus": E,
+    }
+    path = {
+        "control": "offset",
+        "bearing_area": list(BEARING_AREA),
+        "lead_in": list(_lead_in(law.range)),
+        "until_area": UNTIL_AREA,
+        "tol": TOL,
+        "max_iter": MAX_ITER,
+        "thickness": n * a0,
+        "poisson": 0.5,
+    }
+    return Simulation(
+        surface=surface_d,
+        interaction=interaction,
+        path=path,
+        runs=tuple(runs),
+        inverse_kappa=inv,
+        predicted_inverse_kappa=pred,
+        verdict=inv.verdict,
+        predicted_verdict=pred.verdict,
+        notes=tuple(_notes(surface, runs, law, a0)),
+        seconds=time.perf_counter() - t0,
+    )
+
+
+def _notes(surface, runs, law, a0) -> list:
+    from .verdict import _length_text
+
+    notes = [
+        f"simulation: the paper's smoothed 9-3 wall with range sqrt(24 a0 l_a) = "
+        f"{_length_text(law.range * a0)} (not the interaction range of Eq. 10), on synthetic "
+        f"surfaces with lambda_s = {SHORT_CUTOFF:g} a0 and h'rms = {surface['rms_slope']:.3g}, "
+        "the scan's h'rms extrapolated to lambda_s"
+    ]
+    if surface["hurst_clipped"]:
+        notes.append(
+            f"simulation: the fitted H = {surface['hurst_fitted']:.3f} is outside "
+            f"[{HURST_MIN:g}, 1]; the synthetic surfaces use H = {surface['hurst']:.3g}"
+        )
+    if surface["rms_slope"] > 1:
+        notes.append(
+            f"simulation: h'rms = {surface['rms_slope']:.3g} > 1 at lambda_s, beyond the "
+            "small-slope surfaces of the paper"
+        )
+    for r in runs:
+        if r.error:
+            notes.append(f"simulation seed {r.seed}: no result ({r.error})")
+    return notes
