@@ -22,6 +22,7 @@ import uuid
 from pathlib import Path
 
 from ._signals import deferred
+from .errors import ParameterError
 
 __all__ = [
     "STORAGE_ERRNOS",
@@ -196,3 +197,14 @@ def write_netcdf_atomic(ds, path, *, encoding=None, attrs=None, opener=None) -> 
     with deferred():  # serialising too: a finished result is not thrown away half-saved
         data = netcdf_bytes(ds, encoding=encoding, attrs=attrs)
         return write_bytes_atomic(path, data, opener=opener)
+
+
+def read_netcdf(path, *, refusal: str):
+    """Load a NetCDF file (h5netcdf) into memory; ``ParameterError(f"{refusal}: {err}")``
+    (one line) when it cannot be read. ``refusal`` says what the file was expected to be."""
+    import xarray as xr
+
+    try:
+        return xr.load_dataset(path, engine="h5netcdf")
+    except (OSError, ValueError) as err:
+        raise ParameterError(f"{refusal}: {err}") from None

@@ -245,14 +245,9 @@ def read_path(path, *, check: bool = True):
 
     With ``check`` (default) the dataset is checked by :func:`check_path`.
     """
-    import xarray as xr
+    from ._io import read_netcdf
 
-    try:
-        ds = xr.load_dataset(path, engine="h5netcdf")
-    except (OSError, ValueError) as err:
-        raise ParameterError(
-            f"path file {str(path)!r} is not a readable NetCDF file: {err}"
-        ) from None
+    ds = read_netcdf(path, refusal=f"path file {str(path)!r} is not a readable NetCDF file")
     if check:
         check_path(ds)
     return ds

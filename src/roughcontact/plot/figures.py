@@ -30,11 +30,13 @@ a finite positive ``kappa_rep`` (1/κ adds up over seeds; κ itself is never ave
 
 from __future__ import annotations
 
+import io
 import math
 from pathlib import Path
 
 import numpy as np
 
+from .._io import write_bytes_atomic
 from .._validate import DPI, ParameterError
 from ..theory import pastewka_robbins as pr
 from . import _data as D
@@ -423,12 +425,10 @@ def save_figures(dataset, out_dir, formats=("png", "pdf"), *, maps=None, dpi=150
         Figure name -> list of written paths.
     """
     if not hasattr(dataset, "variables"):
-        import xarray as xr
+        from .._io import read_netcdf
 
-        try:
-            dataset = xr.load_dataset(dataset, engine="h5netcdf")
-        except (OSError, ValueError) as err:
-            raise ParameterError(f"{str(dataset)!r} is not a readable NetCDF file: {err}") from None
+        refusal = f"{str(dataset)!r} is not a readable NetCDF file"
+        dataset = read_netcdf(dataset, refusal=refusal)
     dpi = DPI.check("dpi", dpi)  # before any work: matplotlib fails late on a huge canvas
     formats = tuple(formats)
     if not formats or any(not isinstance(f, str) or not f.isalnum() for f in formats):
@@ -443,8 +443,8 @@ def save_figures(dataset, out_dir, formats=("png", "pdf"), *, maps=None, dpi=150
     written = {}
     for name, fig in made.items():
         written[name] = []
-        for fmt in formats:
-            path = out / f"{name}.{fmt}"
-            fig.savefig(path, format=fmt, dpi=dpi, bbox_inches="tight")
-            written[name].append(path)
+        for fmt in formats:  # rendered in memory, renamed into place: no half-written file
+            buf = io.BytesIO()
+            fig.savefig(buf, format=fmt, dpi=dpi, bbox_inches="tight")
+            written[name].append(write_bytes_atomic(out / f"{name}.{fmt}", buf.getvalue()))
     return written

@@ -181,9 +181,9 @@ def approach_retract(
                 raise PathError(why, dataset())
             row = {k: getattr(res, k) for k in STATE_SCALARS}
             row["status"] = res.status.value
-            periodic = getattr(substrate, "periodic", True)  # a free boundary: no wrap
-            # counted on the device: a step copies no field to the host (only fields_at)
-            row["repulsive_patches"] = count_patches(res.pressure > 0, periodic=periodic)
+            # counted on the device: a step copies no field to the host (only fields_at);
+            # on a free boundary patches do not wrap
+            row["repulsive_patches"] = count_patches(res.pressure > 0, periodic=substrate.periodic)
             if previous is None:
                 row["jump"] = False
             else:
@@ -321,7 +321,7 @@ def provenance(heights, substrate, interaction) -> dict:
         "thickness": math.inf if substrate.thickness is None else substrate.thickness,
         "poisson": substrate.poisson,
         "base": "" if substrate.thickness is None else substrate.base,
-        "periodic": int(getattr(substrate, "periodic", True)),  # 0: free boundary
+        "periodic": int(substrate.periodic),  # 0: free boundary
         "interaction_name": "hardwall" if interaction is None else interaction.name,
         "interaction": repr(interaction),
         "substrate": repr(substrate),

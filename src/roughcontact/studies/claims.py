@@ -40,6 +40,7 @@ import numpy as np
 from .._validate import ParameterError
 from ..analysis.stickiness import NOT_STICKY, STICKY, UNDECIDED, inverse_mean
 from ..theory.pastewka_robbins import KAPPA_REP, NECESSARY_CONDITION_CONSTANT
+from .aggregate import _mean_interval, aggregate_seeds
 
 __all__ = [
     "adhesion_and_repulsive_pressure",
@@ -131,18 +132,8 @@ def _spread(values) -> dict:
 
 def _t_interval(values, confidence=0.95) -> dict:
     """Mean of per-seed values with its Student-t interval (NaN below two seeds)."""
-    v = np.asarray(values, dtype=float)
-    v = v[np.isfinite(v)]
-    if v.size == 0:
-        return {"mean": math.nan, "low": math.nan, "high": math.nan, "seeds": 0}
-    mean = float(v.mean())
-    if v.size < 2:
-        return {"mean": mean, "low": math.nan, "high": math.nan, "seeds": 1}
-    from scipy.stats import t
-
-    half = float(t.ppf(0.5 + confidence / 2, v.size - 1)) * float(v.std(ddof=1))
-    half /= math.sqrt(v.size)
-    return {"mean": mean, "low": mean - half, "high": mean + half, "seeds": int(v.size)}
+    mean, low, high, n = _mean_interval(values, confidence)
+    return {"mean": mean, "low": low, "high": high, "seeds": n}
 
 
 def _per_seed(ds, tasks, statistic, confidence=0.95) -> dict:
@@ -449,8 +440,6 @@ def criterion(ds, *, confidence=0.95) -> dict:
     against the predicted one with the measured κ_rep and with κ_rep = 2; and per task
     (one seed each: "sticky"/"not sticky", never undecided).
     """
-    from .aggregate import aggregate_seeds
-
     rows = aggregate_seeds(ds, confidence=confidence)
     rows = [r for r in rows if r["analysed"]]
     measured = [r["verdict"] for r in rows]
@@ -515,8 +504,6 @@ def necessary_condition(ds, *, confidence=0.95) -> dict:
     condition assumes Δr ≈ a0 ≤ δh; ``applicable`` counts the sets where the analysis
     found that true.
     """
-    from .aggregate import aggregate_seeds
-
     rows = [r for r in aggregate_seeds(ds, confidence=confidence) if r["analysed"]]
     bound = NECESSARY_CONDITION_CONSTANT / KAPPA_REP
     a0 = _task(ds, "pixel_size")

@@ -266,17 +266,13 @@ def read_collected(source, *, include_timings: bool = True):
     ParameterError
         One line when ``source`` is neither, or the file holds no ``task`` dimension.
     """
-    import xarray as xr
+    from .._io import read_netcdf
 
     src = Path(source)
     if src.is_dir():
         return collect_study(src, include_timings=include_timings)
-    try:
-        ds = xr.load_dataset(src, engine="h5netcdf")
-    except (OSError, ValueError) as err:
-        raise ParameterError(
-            f"{str(src)!r} is neither a study directory nor a readable NetCDF file: {err}"
-        ) from None
+    refusal = f"{str(src)!r} is neither a study directory nor a readable NetCDF file"
+    ds = read_netcdf(src, refusal=refusal)
     if "task" not in ds.dims:
         raise ParameterError(
             f"{str(src)!r} is not a collected study (no 'task' dimension); make one with "

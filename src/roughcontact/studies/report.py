@@ -19,7 +19,6 @@ The report is size-agnostic: the same command makes it for L = 1024 a0 or 4096 a
 
 from __future__ import annotations
 
-import io
 import json
 import math
 import platform
@@ -30,23 +29,13 @@ import numpy as np
 from .._io import write_bytes_atomic, write_netcdf_atomic
 from .._validate import json_safe
 from . import claims as _claims
+from .collect import STEP_VARIABLES, TIMINGS, read_collected
 
-__all__ = ["load_collected", "render_report", "write_report"]
-
-
-def _step_columns():
-    """The per-step variables of the steps table (no wall-clock times)."""
-    from .collect import STEP_VARIABLES, TIMINGS
-
-    return [v for v in STEP_VARIABLES if v not in TIMINGS]
+__all__ = ["render_report", "write_report"]
 
 
-def load_collected(source):
-    """The collected dataset of a study directory or of a collected ``.nc`` file, without
-    wall-clock times (a report of the same data is the same file)."""
-    from .collect import read_collected
-
-    return read_collected(source, include_timings=False)
+#: The per-step variables of the steps table (no wall-clock times).
+STEP_COLUMNS = tuple(v for v in STEP_VARIABLES if v not in TIMINGS)
 
 
 # ------------------------------------------------------------------------- tables
@@ -71,7 +60,7 @@ def _steps_frame(ds):
         if n == 0:
             continue
         block = {"task": np.repeat(tid, n), "step": np.arange(n)}
-        for name in _step_columns():
+        for name in STEP_COLUMNS:
             if name in ds.variables:
                 block[name] = np.asarray(ds[name].values)[i, :n]
         frames.append(pd.DataFrame(block))
@@ -466,7 +455,7 @@ def write_report(source, out_dir, *, confidence: float = 0.95, dpi: int = 120) -
     dict
         ``{"claims": ..., "files": [written paths]}``.
     """
-    ds = load_collected(source)
+    ds = read_collected(source, include_timings=False)  # a report of the same data is the same file
     out = Path(out_dir)
     claims = _claims.all_claims(ds, confidence=confidence)
     meta = _meta(ds, source, out, claims)
@@ -496,28 +485,11 @@ def write_report(source, out_dir, *, confidence: float = 0.95, dpi: int = 120) -
     }
     text = json.dumps(json_safe(versions), indent=1, sort_keys=True)
     files.append(write_bytes_atomic(out / "versions.json", (text + "\n").encode()))
-    figures = _figures(ds, out / "figures", dpi, files)
+    from ..plot.figures import save_figures
+
+    written = save_figures(ds, out / "figures", ("png",), dpi=dpi)
+    files += [p for paths in written.values() for p in paths]
+    figures = list(written)
     readme = render_report(claims, meta, figures)
     files.append(write_bytes_atomic(out / "README.md", readme.encode()))
     return {"claims": claims, "files": [str(f) for f in files]}
-
-
-def _figures(ds, fig_dir, dpi, files) -> list[str]:
-    """Figs. 2-4 as PNG (atomically); the names of those made."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    from ..plot.figures import FIGURES
-
-    fig_dir.mkdir(parents=True, exist_ok=True)
-    made = []
-    for name, make in FIGURES.items():
-        fig = make(ds)
-        buf = io.BytesIO()
-        fig.savefig(buf, format="png", dpi=dpi, bbox_inches="tight")
-        plt.close(fig)
-        files.append(write_bytes_atomic(fig_dir / f"{name}.png", buf.getvalue()))
-        made.append(name)
-    return made
