@@ -39,6 +39,29 @@ def test_periodic_wrap_around():
     assert rc.perimeter_edges(m) == rc.perimeter_edges(disc(64, 6.0, (32, 32)))
 
 
+def test_window_edge_is_not_perimeter():
+    # a 5 x 7 rectangle in the corner of a window (periodic=False): only its two inner
+    # sides are boundary; on the periodic lattice it is a whole rectangle (4 sides)
+    m = np.zeros((20, 30), bool)
+    m[:5, :7] = True
+    assert rc.perimeter_edges(m, periodic=False) == 5 + 7
+    assert rc.perimeter_edges(m) == 2 * (5 + 7)
+    assert rc.perimeter(m, 2.0, periodic=False) == pytest.approx(12 * np.pi / 4 * 2.0)
+    # a stripe across the window: two long sides either way, none along the edges
+    s = np.zeros((20, 30), bool)
+    s[8:11, :] = True
+    assert rc.perimeter_edges(s, periodic=False) == rc.perimeter_edges(s) == 2 * 30
+    # a full window has no boundary; a quarter disc in the corner loses exactly the
+    # bonds of its two straight sides, which lie on the window's edge
+    assert rc.perimeter_edges(np.ones((6, 9), bool), periodic=False) == 0
+    quarter = disc(64, 10.0, (0, 0)) & (np.arange(64)[:, None] < 32) & (np.arange(64) < 32)
+    inside = np.roll(quarter, (20, 20), axis=(0, 1))
+    sides = int(quarter[0].sum() + quarter[:, 0].sum())
+    assert rc.perimeter_edges(quarter, periodic=False) == rc.perimeter_edges(inside) - sides
+    c = rc.corrected_area(m, periodic=False)
+    assert c == pytest.approx(35 - (np.pi - 1 + np.log(2)) / 24 * 12)
+
+
 def test_patches_sorted_by_size_and_four_connected():
     m = np.zeros((16, 16), bool)
     m[1:3, 1:3] = True  # 4 sites

@@ -278,3 +278,17 @@ def test_study_key_periodic():
     pytest.importorskip("xarray")
     ds = compute_task(free.tasks[0])
     assert ds.attrs["periodic"] == 0 and "periodic=False" in ds.attrs["substrate"]
+
+
+def test_contact_cut_by_the_window_has_no_perimeter_along_it(free):
+    # a sphere centred on the window's corner: the free-boundary result counts only the
+    # bonds inside the window (the periodic count would add the cut edges)
+    h = rc.sphere((N, N), 64.0, center=(0.0, 0.0))
+    res = rc.polonsky_keer(h, free, load=0.02, tol=1e-8)
+    mask = res.pressure > 0
+    assert res.converged and mask[0, 0] and mask[0].sum() > 1
+    assert res.perimeter_edges == rc.perimeter_edges(mask, periodic=False)
+    assert res.perimeter_edges < rc.perimeter_edges(mask)
+    assert res.corrected_repulsive_area * N * N == pytest.approx(
+        rc.corrected_area(mask, periodic=False)
+    )

@@ -1,8 +1,11 @@
-"""Geometry of contact maps: area, perimeter, patches (periodic boundaries).
+"""Geometry of contact maps: area, perimeter, patches.
 
-All functions take a boolean map (True = site in the set, e.g. repulsive) on a periodic
-grid. They are exact counts, except :func:`corrected_area`, which is the
-perimeter-corrected estimate of the true contact area of Yastrebov et al. (2017).
+All functions take a boolean map (True = site in the set, e.g. repulsive), by default on
+a periodic grid; ``periodic=False`` treats the map as a window of a larger surface (a
+free-boundary solve, a measured scan): bonds and patches do not wrap around, and the
+edge of the window is not a contact boundary. They are exact counts, except
+:func:`corrected_area`, which is the perimeter-corrected estimate of the true contact
+area of Yastrebov et al. (2017).
 
 Maps of any array-API backend (NumPy, CuPy, ...) are counted where they live: only the
 counts reach the host, so a path on a GPU does not copy its contact maps. The one
@@ -45,32 +48,39 @@ def area_fraction(mask) -> float:
     return float(array_namespace(m).count_nonzero(m)) / m.size
 
 
-def perimeter_edges(mask) -> int:
+def perimeter_edges(mask, *, periodic: bool = True) -> int:
     """Number of nearest-neighbour bonds that cross the boundary of ``mask``.
 
-    Bonds are counted on the periodic square lattice in both directions; for a convex
-    region this is the 'Manhattan' perimeter in units of a0. A bond crosses the boundary
-    where a site and its periodic neighbour differ, so the count is that of
-    ``m != roll(m, 1)`` along each axis, taken on the mask's device (array API).
+    Bonds are counted on the square lattice in both directions; for a convex region
+    this is the 'Manhattan' perimeter in units of a0. A bond crosses the boundary where a
+    site and its neighbour differ, counted on the mask's device (array API). With
+    ``periodic`` (default) the last row and column bond to the first (``m !=
+    roll(m, 1)``); without, only the bonds inside the window count, so a contact cut by
+    the window's edge contributes no perimeter along it.
     """
     m = _bool_map(mask)
     xp = array_namespace(m)
-    return int(xp.count_nonzero(m != xp.roll(m, 1, axis=0))) + int(
-        xp.count_nonzero(m != xp.roll(m, 1, axis=1))
+    if periodic:
+        return int(xp.count_nonzero(m != xp.roll(m, 1, axis=0))) + int(
+            xp.count_nonzero(m != xp.roll(m, 1, axis=1))
+        )
+    return int(xp.count_nonzero(m[1:, ...] != m[:-1, ...])) + int(
+        xp.count_nonzero(m[:, 1:] != m[:, :-1])
     )
 
 
-def perimeter(mask, pixel_size: float = 1.0) -> float:
+def perimeter(mask, pixel_size: float = 1.0, *, periodic: bool = True) -> float:
     r"""Perimeter (length) of ``mask``: edge count × π/4 × a0.
 
     The π/4 factor corrects the lattice's Manhattan length for isotropic boundaries
     (a disc of radius R has 8R/a0 edges and perimeter 2πR); Pastewka & Robbins 2014,
-    Methods, and Yastrebov et al., Tribol. Lett. 56, 171 (2014).
+    Methods, and Yastrebov et al., Tribol. Lett. 56, 171 (2014). ``periodic`` as in
+    :func:`perimeter_edges`.
     """
-    return perimeter_edges(mask) * np.pi / 4.0 * pixel_size
+    return perimeter_edges(mask, periodic=periodic) * np.pi / 4.0 * pixel_size
 
 
-def corrected_area(mask, pixel_size: float = 1.0) -> float:
+def corrected_area(mask, pixel_size: float = 1.0, *, periodic: bool = True) -> float:
     r"""Perimeter-corrected true contact area of ``mask`` (length²).
 
     Counting the sites of a discretised contact overestimates the true contact area by
@@ -83,7 +93,7 @@ def corrected_area(mask, pixel_size: float = 1.0) -> float:
 
     where :math:`n_c` is the number of sites in ``mask`` and :math:`n_e` the number of
     nearest-neighbour bonds joining a site in ``mask`` to one outside (both directions,
-    with periodic wrap-around: :func:`perimeter_edges`). The coefficient
+    :func:`perimeter_edges`). The coefficient
     :math:`(\pi - 1 + \ln 2)/24 \approx 0.118` is :data:`AREA_CORRECTION_PER_EDGE`.
     Since :math:`n_e \le 4 n_c` the estimate is never negative; it equals the raw count
     for an empty or a full map (no boundary).
@@ -94,6 +104,9 @@ def corrected_area(mask, pixel_size: float = 1.0) -> float:
         Contact map (True = in contact), e.g. ``result.pressure > 0``.
     pixel_size : float, optional
         Grid spacing :math:`a_0` (length), > 0.
+    periodic : bool, optional
+        Whether bonds wrap around the map's edges (default); False for a window of a
+        larger surface.
 
     Returns
     -------
@@ -114,7 +127,7 @@ def corrected_area(mask, pixel_size: float = 1.0) -> float:
     a0 = positive("pixel_size", pixel_size)
     m = _mask2d(mask)
     n_c = int(array_namespace(m).count_nonzero(m))
-    n_e = perimeter_edges(m)
+    n_e = perimeter_edges(m, periodic=periodic)
     return float((n_c - AREA_CORRECTION_PER_EDGE * n_e) * a0 * a0)
 
 

@@ -48,7 +48,8 @@ def make_result(
         attractive = xp.zeros_like(repulsive)
     rep_load = _sum64(pressure[repulsive]) / n
     att_load = -_sum64(pressure[attractive]) / n
-    edges = perimeter_edges(repulsive)
+    # a free-boundary solve is a window: its edge is not a contact boundary
+    edges = perimeter_edges(repulsive, periodic=substrate.periodic)
     a0 = substrate.pixel_size
     return ContactResult(
         offset=float(offset),
