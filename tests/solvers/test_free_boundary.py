@@ -292,3 +292,14 @@ def test_contact_cut_by_the_window_has_no_perimeter_along_it(free):
     assert res.corrected_repulsive_area * N * N == pytest.approx(
         rc.corrected_area(mask, periodic=False)
     )
+
+
+def test_path_statistics_of_a_window_have_no_wrap_around(free):
+    # the path's provenance (h'rms behind κ = h'rms E* A/N) takes a free-boundary
+    # surface as a window: a tilted plane keeps its slope, where one period would add
+    # the wrap-around jump
+    from roughcontact.solvers.path import provenance
+
+    plane = 0.1 * np.arange(N)[:, None] + np.zeros((1, N))
+    assert provenance(plane, free, None)["rms_slope"] == pytest.approx(0.1, rel=1e-12)
+    assert provenance(plane, rc.Substrate((N, N)), None)["rms_slope"] > 0.5

@@ -117,8 +117,10 @@ def test_convenience_functions_and_to_dict():
         "predicted_d_rep",
         "predicted_delta_h",
         "method",
+        "periodic",
     }
-    assert all(type(v) is float for k, v in d.items() if k != "method")
+    assert d["periodic"] is True and d["method"] == "spectral"
+    assert all(type(v) is float for k, v in d.items() if k not in ("method", "periodic"))
     assert d["predicted_d_rep"] == pytest.approx(4 * s.rms_slope / s.rms_curvature)
     assert d["predicted_delta_h"] == pytest.approx(s.rms_slope**2 / s.rms_curvature)
     with pytest.raises(AttributeError):
@@ -191,6 +193,57 @@ def test_bad_method_and_pixel_size():
         statistics(np.ones((4, 4)), method="wavelet")
     with pytest.raises(ParameterError, match="pixel_size"):
         statistics(np.ones((4, 4)), pixel_size=-1)
+
+
+# --- a window of a larger surface (periodic=False): no derivative across its edges
+
+
+def test_window_plane_and_paraboloid_exact():
+    # central differences are exact for polynomials of degree 2: a tilted plane has
+    # h'rms = |grad h| and no curvature; c x² + e y² has lap h = 2(c + e) everywhere.
+    # Taken as one period, the plane's wrap-around jump would be a huge spurious slope.
+    x = np.arange(40)[:, None] * 0.5
+    y = np.arange(30)[None, :] * 0.5
+    plane = 0.3 * x - 0.4 * y
+    w = statistics(plane, pixel_size=0.5, periodic=False)
+    assert w.rms_slope == pytest.approx(0.5, rel=1e-12) and w.rms_curvature < 1e-9
+    assert (w.method, w.periodic) == ("finite-difference", False)
+    assert statistics(plane, pixel_size=0.5).rms_slope > 5 * w.rms_slope
+    bowl = 0.02 * x**2 - 0.05 * y**2
+    assert rms_curvature(bowl, pixel_size=0.5, periodic=False) == pytest.approx(0.06, rel=1e-9)
+    # the slope of the bowl: the mean of (2cx)² over the rows with two neighbours
+    gx2 = np.mean((0.04 * x[1:-1]) ** 2) + np.mean((0.1 * y[:, 1:-1]) ** 2)
+    assert rms_slope(bowl, pixel_size=0.5, periodic=False) == pytest.approx(math.sqrt(gx2))
+
+
+def test_window_agrees_with_period_on_a_periodic_surface():
+    # a periodic surface seen as a window: the same statistics as the periodic
+    # differences, up to the edge rows' share of the average
+    h = self_affine(128, hurst=0.8, rms_slope=0.1, short_cutoff=8, seed=3)
+    w = statistics(h, periodic=False)
+    p = statistics(h, method="finite-difference")
+    assert w.rms_height == p.rms_height
+    assert w.rms_slope == pytest.approx(p.rms_slope, rel=0.03)
+    assert w.rms_curvature == pytest.approx(p.rms_curvature, rel=0.03)
+
+
+def test_window_against_surface_topography():
+    # peer: SurfaceTopography's non-periodic Topography (same 5-point Laplacian inside
+    # the window; forward rather than central differences for the gradient)
+    st = pytest.importorskip("SurfaceTopography")
+    h = self_affine(128, hurst=0.8, rms_slope=0.1, short_cutoff=8, seed=3)
+    h = h + 0.05 * np.arange(128)[:, None]  # a tilt: no longer periodic
+    peer = st.Topography(h, (64.0, 64.0), periodic=False)
+    w = statistics(h, pixel_size=0.5, periodic=False)
+    assert w.rms_curvature == pytest.approx(peer.rms_laplacian(), rel=1e-10)
+    assert w.rms_slope == pytest.approx(peer.rms_gradient(), rel=0.03)
+
+
+def test_window_refuses_spectral_and_tiny_maps():
+    with pytest.raises(ParameterError, match="method='spectral' needs a periodic map"):
+        statistics(np.ones((8, 8)), method="spectral", periodic=False)
+    with pytest.raises(ParameterError, match="at least 3 x 3"):
+        rms_slope(np.ones((2, 8)), periodic=False)
 
 
 def test_sinusoid_geometry_statistics_consistent():

@@ -153,7 +153,8 @@ def hard_wall_reference(
     from ..surfaces.statistics import statistics
 
     target = in_range("target_area", target_area, 1e-12, 1.0)
-    slope = statistics(heights, pixel_size=substrate.pixel_size).rms_slope
+    stats = statistics(heights, pixel_size=substrate.pixel_size, periodic=substrate.periodic)
+    slope = stats.rms_slope
     slope = slope if rms_slope is None else positive("rms_slope", rms_slope)
     modulus = substrate.contact_modulus
     states, converged = [], True

@@ -296,8 +296,9 @@ def _jump_length(interaction) -> float:
 def provenance(heights, substrate, interaction) -> dict:
     """Everything needed to analyse a path without its inputs: NetCDF-ready attributes.
 
-    Surface statistics (spectral h_rms, h'rms, h''rms, d_rep = 4h'rms/h''rms, the
-    shortest wavelength present), the substrate (E*, a0, grid, thickness (inf for a
+    Surface statistics (h_rms, h'rms, h''rms, d_rep = 4h'rms/h''rms: spectral on a
+    periodic substrate, finite differences inside the window on a free one; the shortest
+    wavelength present), the substrate (E*, a0, grid, thickness (inf for a
     half-space), ν, base ("" for a half-space), periodic (0 for a free boundary):
     ``Substrate(grid, contact_modulus=..., pixel_size=..., thickness=None if inf,
     poisson=..., base=base or "bonded", periodic=bool(periodic))`` rebuilds it) and the
@@ -307,7 +308,7 @@ def provenance(heights, substrate, interaction) -> dict:
     from ..surfaces.statistics import short_cutoff_estimate, statistics
 
     a0 = substrate.pixel_size
-    stats = statistics(heights, pixel_size=a0)
+    stats = statistics(heights, pixel_size=a0, periodic=substrate.periodic)
     attrs = {
         "rms_height": stats.rms_height,
         "rms_slope": stats.rms_slope,

@@ -60,7 +60,8 @@ def path_values(path: dict, heights, law, params: dict) -> np.ndarray:
         lead_in = relative_offsets(heights, path["lead_in"], "length", law, a0)
         offsets = relative_offsets(heights, values, path["unit"], law, a0)
         return np.concatenate((lead_in, offsets))
-    stats = statistics(heights, pixel_size=params["pixel_size"])
+    a0, periodic = params["pixel_size"], params.get("periodic", True)
+    stats = statistics(heights, pixel_size=a0, periodic=periodic)
     scale = stats.rms_slope if path["unit"] == "rms_slope_modulus" else 1.0
     return values * scale * params["contact_modulus"]
 

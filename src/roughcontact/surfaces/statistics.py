@@ -1,7 +1,10 @@
-"""Statistical descriptors of a periodic height map h(x, y).
+"""Statistical descriptors of a height map h(x, y): one period, or a window.
 
 All averages ``<.>`` are means over the grid points of one period (area A0 = Lx*Ly).
-Lengths are in units of the pixel size a0 unless ``pixel_size`` is given.
+Lengths are in units of the pixel size a0 unless ``pixel_size`` is given. A map that is
+a window of a larger surface (a measured scan, a free-boundary solve: ``periodic=False``)
+has no derivative across its edges: there the finite differences below are taken only
+where both neighbours lie inside the window.
 
 Two ways of taking derivatives are offered:
 
@@ -25,11 +28,15 @@ Two ways of taking derivatives are offered:
     ``rms_slope`` or ``rms_height`` is reproduced to round-off.
 
 ``method="finite-difference"``
-    Periodic central differences ``(h[i+1] - h[i-1]) / (2 a0)`` for the gradient and the
+    Central differences ``(h[i+1] - h[i-1]) / (2 a0)`` for the gradient and the
     5-point Laplacian ``(h[i+1,j] + h[i-1,j] + h[i,j+1] + h[i,j-1] - 4 h[i,j]) / a0^2``.
     For ``h = A cos(q x)`` these give ``h'_rms = A sin(q a0) / (sqrt(2) a0)`` and
     ``h''_rms = 4 A sin^2(q a0 / 2) / (sqrt(2) a0^2)``, i.e. the spectral values to
-    ``O((q a0)^2)``.
+    ``O((q a0)^2)``. Periodic maps wrap around; on a window the gradient along an axis is
+    averaged over the points with both neighbours along it, the Laplacian over the
+    interior points (so a plane's slope and a paraboloid's curvature are exact). The
+    spectral method assumes periodicity (the wrap-around jump of a window would enter
+    as a spurious slope) and is refused for a window.
 
 The power spectrum follows Persson's convention (B. N. J. Persson et al.,
 J. Phys.: Condens. Matter 17, R1 (2005)), see :func:`power_spectrum`.
@@ -86,6 +93,8 @@ class SurfaceStatistics:
         ``h''_rms = 0``.
     method : str
         ``"spectral"`` or ``"finite-difference"``: how the derivatives were taken.
+    periodic : bool
+        Whether the map was taken as one period (True) or as a window (False).
     """
 
     rms_height: float
@@ -94,16 +103,25 @@ class SurfaceStatistics:
     predicted_d_rep: float
     predicted_delta_h: float
     method: str
+    periodic: bool = True
 
     def to_dict(self) -> dict:
-        """Return the fields as a plain ``dict`` (floats and the method string)."""
+        """Return the fields as a plain ``dict`` (floats, the method string, ``periodic``)."""
         d = asdict(self)
-        return {k: (v if isinstance(v, str) else float(v)) for k, v in d.items()}
+        return {k: (v if isinstance(v, str | bool) else float(v)) for k, v in d.items()}
 
 
-def _check_method(method: str) -> str:
+def _check_method(method: str | None, periodic: bool) -> str:
+    """The method to use: the default (None) is spectral on a period, else differences."""
+    if method is None:
+        return "spectral" if periodic else "finite-difference"
     if method not in _METHODS:
         raise ParameterError(f"method must be one of {_METHODS}, got {method!r}")
+    if method == "spectral" and not periodic:
+        raise ParameterError(
+            "method='spectral' needs a periodic map; with periodic=False use "
+            "method='finite-difference' (the default)"
+        )
     return method
 
 
@@ -169,31 +187,64 @@ def _fd_moments(h, pixel_size: float) -> tuple[float, float, float]:
     )
 
 
-def _moments(heights, pixel_size, method):
+def _window_fd_moments(h, pixel_size: float) -> tuple[float, float, float]:
+    """:func:`_fd_moments` on a window: stencils only where they fit inside the map."""
+    if min(h.shape) < 3:
+        raise ParameterError(
+            f"heights must be at least 3 x 3 points for periodic=False, got {h.shape}"
+        )
+    xp = array_namespace(h)
+    a = pixel_size
+    hm = h - xp.mean(h)
+    gx = (h[2:, :] - h[:-2, :]) / (2 * a)
+    gy = (h[:, 2:] - h[:, :-2]) / (2 * a)
+    c = h[1:-1, 1:-1]
+    lap = (h[2:, 1:-1] + h[:-2, 1:-1] + h[1:-1, 2:] + h[1:-1, :-2] - 4 * c) / a**2
+    return (
+        float(xp.mean(hm * hm)),
+        float(xp.mean(gx * gx)) + float(xp.mean(gy * gy)),
+        float(xp.mean(lap * lap)),
+    )
+
+
+def _moments(heights, pixel_size, method, periodic=True):
     h = heights2d("heights", heights)
     a = PIXEL_SIZE.check("pixel_size", pixel_size)
-    _check_method(method)
+    method = _check_method(method, periodic)
     # slopes and curvatures of representable heights may still overflow (tiny pixels):
     # they come out inf, without warnings, and print as null in JSON
     with np.errstate(over="ignore", invalid="ignore"):
         if method == "spectral":
             return _spectral_moments(h, a)
-        return _fd_moments(h, a)
+        if periodic:
+            return _fd_moments(h, a)
+        return _window_fd_moments(h, a)
 
 
-def statistics(heights, *, pixel_size: float = 1.0, method: str = "spectral") -> SurfaceStatistics:
-    r"""Root-mean-square height, slope and curvature of a periodic height map.
+def statistics(
+    heights,
+    *,
+    pixel_size: float = 1.0,
+    method: str | None = None,
+    periodic: bool = True,
+) -> SurfaceStatistics:
+    r"""Root-mean-square height, slope and curvature of a height map.
 
     Parameters
     ----------
     heights : (nx, ny) array
-        Heights h [length] on a periodic grid, ``x = i*pixel_size``, ``y = j*pixel_size``.
+        Heights h [length] on a grid, ``x = i*pixel_size``, ``y = j*pixel_size``.
         NumPy or any array-API array (e.g. CuPy).
     pixel_size : float, optional
         Grid spacing a0 [length], in [1e-25, 1e25]. Default 1.
     method : {"spectral", "finite-difference"}, optional
         How derivatives are taken (see the module docstring, including the Nyquist
-        convention of the spectral method).
+        convention of the spectral method). Default: spectral on a periodic map,
+        finite differences on a window (spectral derivatives need periodicity).
+    periodic : bool, optional
+        Whether ``heights`` is one period of a periodic surface (default) or a window of
+        a larger one (a measured scan, a free-boundary substrate: at least 3 x 3
+        points), whose edges carry no derivative.
 
     Returns
     -------
@@ -206,7 +257,8 @@ def statistics(heights, *, pixel_size: float = 1.0, method: str = "spectral") ->
     ----------
     Pastewka & Robbins, PNAS 111, 3298 (2014), Eqs. 1, 8, 9.
     """
-    m0, m2, m4 = _moments(heights, pixel_size, method)
+    method = _check_method(method, periodic)
+    m0, m2, m4 = _moments(heights, pixel_size, method, periodic)
     hrms, sl, cu = math.sqrt(m0), math.sqrt(m2), math.sqrt(m4)
     if cu > 0:
         d_rep, dh = 4 * sl / cu, sl**2 / cu
@@ -219,6 +271,7 @@ def statistics(heights, *, pixel_size: float = 1.0, method: str = "spectral") ->
         predicted_d_rep=d_rep,
         predicted_delta_h=dh,
         method=method,
+        periodic=bool(periodic),
     )
 
 
@@ -227,14 +280,18 @@ def rms_height(heights, *, pixel_size: float = 1.0) -> float:
     return math.sqrt(_moments(heights, pixel_size, "spectral")[0])
 
 
-def rms_slope(heights, *, pixel_size: float = 1.0, method: str = "spectral") -> float:
+def rms_slope(
+    heights, *, pixel_size: float = 1.0, method: str | None = None, periodic: bool = True
+) -> float:
     """``h'_rms = <|grad h|^2>^(1/2)`` (PNAS 2014, Eq. 1); see :func:`statistics`."""
-    return math.sqrt(_moments(heights, pixel_size, method)[1])
+    return math.sqrt(_moments(heights, pixel_size, method, periodic)[1])
 
 
-def rms_curvature(heights, *, pixel_size: float = 1.0, method: str = "spectral") -> float:
+def rms_curvature(
+    heights, *, pixel_size: float = 1.0, method: str | None = None, periodic: bool = True
+) -> float:
     """``h''_rms = <(lap h)^2>^(1/2)`` [1/length] (PNAS 2014, Eq. 8); see :func:`statistics`."""
-    return math.sqrt(_moments(heights, pixel_size, method)[2])
+    return math.sqrt(_moments(heights, pixel_size, method, periodic)[2])
 
 
 def power_spectrum(
