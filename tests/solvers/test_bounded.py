@@ -145,6 +145,28 @@ def test_load_control_never_steps_below_the_hard_core_bound():
     assert not res.converged and "next to mean(heights)" in res.message
 
 
+def test_an_offset_change_that_lifts_the_contact_off_the_wall():
+    # Maugis-Dugdale on a rough surface, warm-started from the state at a slightly
+    # smaller offset: the shift lifts every contact site off the wall, where the
+    # projected preconditioned step does not descend; the solver must still find the
+    # equilibrium (it used to creep for ~1300 iterations and give up), and load control
+    # through such warm starts reaches its load
+    h = rc.self_affine((128, 128), hurst=0.8, rms_slope=0.1, short_cutoff=4, seed=1)
+    sub = rc.Substrate(h.shape)
+    law = MaugisDugdale(work_of_adhesion=0.005, range=0.5)
+    d = float(h.max() - 1.2 * h.std())
+    base = rc.solve(h, sub, law, offset=d, tol=1e-9)
+    moved = rc.solve(h, sub, law, offset=d + 5e-4, initial=base, tol=1e-9)
+    assert base.converged and moved.converged and moved.iterations < 200
+    # the contact conditions hold in the new state (KKT, as in test_contact_conditions)
+    g, p = moved.gap, moved.pressure
+    free = g > 1e-12
+    np.testing.assert_allclose(p[free], law.pressure(g[free]), atol=1e-12)
+    np.testing.assert_allclose(sub.pressure(moved.deflection) + moved.load, p, atol=5e-9)
+    res = rc.solve(h, sub, law, load=1e-4, tol=1e-9)
+    assert res.converged and res.load == pytest.approx(1e-4, abs=1e-9)
+
+
 @pytest.mark.parametrize("law", [Exponential(work_of_adhesion=0.01, range=0.3)], ids=["exp"])
 def test_single_precision_convolutions_reach_float64_accuracy(sphere, law):
     # the preconditioner and K s run in float32 (~1e-7 rounding); K w is replaced by an

@@ -19,7 +19,9 @@ and of the bounded CG of Bugnicourt et al. (Tribol. Lett. 66, 29 (2018)):
 * steps that would cross the wall are projected onto the feasible set
   :math:`\{w \ge h - d,\ \bar w = 0\}` (clip plus a uniform shift, found by a
   finite Newton iteration), as Polonsky & Keer project their pressures; a projected step
-  that does not lower the energy is halved, then replaced by the largest feasible step.
+  that does not lower the energy is halved, then replaced by a projected steepest-descent
+  step (Bertsekas, IEEE Trans. Autom. Control 21, 174 (1976)), which lowers it for a short
+  enough step: a preconditioned direction, once projected, need not descend.
 
 Convergence measure (``residual``): the largest force imbalance on a free site,
 ``max |K w - p_int(g) - μ| / E*``; sites on the active face satisfy the contact
@@ -271,13 +273,17 @@ def minimize_energy_bounded(
                 break
             alpha *= 0.5
         else:
-            if alpha_max <= 0:
+            # the preconditioned direction mixes sites across the face, so once projected
+            # it need not descend (e.g. after an offset change lifts a whole contact off
+            # the wall); the projected gradient does, for a short enough step
+            step = _projected_gradient_step(
+                w, kw, rr, e_cur, lower, rigid, stiff, energy, interaction, gap, work
+            )
+            if step is None:
                 status = SolveStatus.LINE_SEARCH_FAILED
                 message = f"no descent along the projected direction at iteration {it}"
                 break
-            w_try = xp.maximum(w + alpha_max * s, lower)  # largest feasible step
-            kw_try = stiff(w_try)
-            e_try = energy(w_try, kw_try)
+            w_try, kw_try, e_try = step
         w, kw, e_cur, exact = w_try, kw_try, e_try, True
         s = None  # the face changed: restart the conjugate directions
 
@@ -300,3 +306,24 @@ def minimize_energy_bounded(
         repulsive=xp.reshape(traction > 0, shape),
         attractive=xp.reshape(traction < 0, shape),
     )
+
+
+def _projected_gradient_step(w, kw, rr, e_cur, lower, rigid, stiff, energy, interaction, gap, work):
+    """A projected steepest-descent step that lowers E, or None (Bertsekas 1976).
+
+    The direction ``-rr`` (zero on the active face; zero-mean with a rigid mean) starts
+    at the line minimum of E along it and is halved until the projected state lowers the
+    energy; for a small enough step it always does unless ``w`` is stationary.
+    """
+    s = -rr
+    ks = stiff(s)
+    alpha = line_minimum(interaction, gap, s, kw, ks, -_dot(rr, rr), work=work)
+    alpha = alpha if math.isfinite(alpha) and alpha > 0 else 1.0
+    for _ in range(40):
+        w_try = project_feasible(w + alpha * s, lower, rigid)
+        kw_try = stiff(w_try)
+        e_try = energy(w_try, kw_try)
+        if e_try < e_cur:
+            return w_try, kw_try, e_try
+        alpha *= 0.5
+    return None
