@@ -73,6 +73,7 @@ DISAGREEMENT_KEYS = (
     "predicted_verdict_continuum",
     "kappa",
     "kappa_att",
+    "predicted_kappa_att",
     "kappa_rep",
 )
 

@@ -315,10 +315,12 @@ def _claim_lines(c) -> list[str]:
         ]
     if cr["disagreements"]:
         L += [
-            "Parameter sets where the decided verdicts differ (measured κ_rep):",
+            "Parameter sets where the decided verdicts differ (measured κ_rep; κ, κ_att and "
+            "κ_rep measured, the prediction compares Eq. 7's κ_att with κ_rep):",
             "",
-            "| H | h′rms | λs/a0 | ℓa/a0 | measured | predicted | κ_rep = 2 | κ | κ_att | κ_rep |",
-            "|---|---|---|---|---|---|---|---|---|---|",
+            "| H | h′rms | λs/a0 | ℓa/a0 | measured | predicted | κ_rep = 2 | κ | κ_att "
+            "| κ_att (Eq. 7) | κ_rep |",
+            "|---|---|---|---|---|---|---|---|---|---|---|",
         ]
         for r in cr["disagreements"]:
             L.append(
