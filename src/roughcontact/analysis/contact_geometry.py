@@ -64,7 +64,7 @@ def perimeter_edges(mask, *, periodic: bool = True) -> int:
         return int(xp.count_nonzero(m != xp.roll(m, 1, axis=0))) + int(
             xp.count_nonzero(m != xp.roll(m, 1, axis=1))
         )
-    return int(xp.count_nonzero(m[1:, ...] != m[:-1, ...])) + int(
+    return int(xp.count_nonzero(m[1:, :] != m[:-1, :])) + int(
         xp.count_nonzero(m[:, 1:] != m[:, :-1])
     )
 

@@ -166,40 +166,27 @@ def _spectral_moments(h, pixel_size: float) -> tuple[float, float, float]:
     return max(m0, 0.0), m2, m4
 
 
-def _fd_moments(h, pixel_size: float) -> tuple[float, float, float]:
-    """Same as :func:`_spectral_moments` with periodic central / 5-point differences."""
+def _fd_moments(h, pixel_size: float, periodic: bool) -> tuple[float, float, float]:
+    """Same as :func:`_spectral_moments` with central / 5-point differences: wrapping
+    around a period, or on a window only where the stencil fits inside the map."""
     xp = array_namespace(h)
     a = pixel_size
     hm = h - xp.mean(h)
-    gx = (xp.roll(h, -1, axis=0) - xp.roll(h, 1, axis=0)) / (2 * a)
-    gy = (xp.roll(h, -1, axis=1) - xp.roll(h, 1, axis=1)) / (2 * a)
-    lap = (
-        xp.roll(h, -1, axis=0)
-        + xp.roll(h, 1, axis=0)
-        + xp.roll(h, -1, axis=1)
-        + xp.roll(h, 1, axis=1)
-        - 4 * h
-    ) / a**2
-    return (
-        float(xp.mean(hm * hm)),
-        float(xp.mean(gx * gx + gy * gy)),
-        float(xp.mean(lap * lap)),
-    )
-
-
-def _window_fd_moments(h, pixel_size: float) -> tuple[float, float, float]:
-    """:func:`_fd_moments` on a window: stencils only where they fit inside the map."""
-    if min(h.shape) < 3:
-        raise ParameterError(
-            f"heights must be at least 3 x 3 points for periodic=False, got {h.shape}"
-        )
-    xp = array_namespace(h)
-    a = pixel_size
-    hm = h - xp.mean(h)
-    gx = (h[2:, :] - h[:-2, :]) / (2 * a)
-    gy = (h[:, 2:] - h[:, :-2]) / (2 * a)
-    c = h[1:-1, 1:-1]
-    lap = (h[2:, 1:-1] + h[:-2, 1:-1] + h[1:-1, 2:] + h[1:-1, :-2] - 4 * c) / a**2
+    if periodic:
+        up, down = xp.roll(h, -1, axis=0), xp.roll(h, 1, axis=0)
+        right, left = xp.roll(h, -1, axis=1), xp.roll(h, 1, axis=1)
+        gx, gy = (up - down) / (2 * a), (right - left) / (2 * a)
+        lap = (up + down + right + left - 4 * h) / a**2
+    else:
+        if min(h.shape) < 3:
+            raise ParameterError(
+                f"heights must be at least 3 x 3 points for periodic=False, got {h.shape}"
+            )
+        gx = (h[2:, :] - h[:-2, :]) / (2 * a)
+        gy = (h[:, 2:] - h[:, :-2]) / (2 * a)
+        c = h[1:-1, 1:-1]
+        lap = (h[2:, 1:-1] + h[:-2, 1:-1] + h[1:-1, 2:] + h[1:-1, :-2] - 4 * c) / a**2
+    # gx and gy may cover different points (a window): average each over its own
     return (
         float(xp.mean(hm * hm)),
         float(xp.mean(gx * gx)) + float(xp.mean(gy * gy)),
@@ -216,9 +203,7 @@ def _moments(heights, pixel_size, method, periodic=True):
     with np.errstate(over="ignore", invalid="ignore"):
         if method == "spectral":
             return _spectral_moments(h, a)
-        if periodic:
-            return _fd_moments(h, a)
-        return _window_fd_moments(h, a)
+        return _fd_moments(h, a, periodic)
 
 
 def statistics(
