@@ -17,7 +17,7 @@ import roughcontact as rc
 from roughcontact.cli.main import main
 from roughcontact.criterion import stickiness_criterion
 
-DATA = Path(__file__).resolve().parents[2].parent / "shared" / "data" / "topographies"
+DATA = Path(__file__).resolve().parents[1] / "data" / "topographies"
 MATERIAL = ["--modulus", "10MPa", "--work-of-adhesion", "50mJ/m^2"]
 REPORT = {"result.json", "summary.txt", "scan.png", "psd.png", "slope.png", "margin.png"}
 
@@ -37,9 +37,7 @@ def _run(args):
 
 def _real(name):
     path = DATA / name
-    if not path.exists():
-        pytest.skip(f"{path} not present")
-    pytest.importorskip("SurfaceTopography")
+    assert path.is_file(), f"test data {path} missing from the repository"
     return path
 
 

@@ -18,14 +18,16 @@ from click.testing import CliRunner
 
 from roughcontact.cli.main import main
 
-DATA = Path(__file__).resolve().parents[3] / "shared" / "data" / "topographies"
+DATA = Path(__file__).resolve().parents[1] / "data" / "topographies"
 
 
 def data_file(name: str) -> str:
-    pytest.importorskip("SurfaceTopography")
-    if not (DATA / name).is_file():
-        pytest.skip(f"test data {name} not available")
-    return str(DATA / name)
+    """A real instrument file kept in the repository (tests/data/topographies/README.md)."""
+    import SurfaceTopography  # noqa: F401  (a test dependency: it must be installed)
+
+    path = DATA / name
+    assert path.is_file(), f"test data {path} missing from the repository"
+    return str(path)
 
 
 def header_pixel_size(path: str) -> float:

@@ -26,14 +26,16 @@ from roughcontact.topography import (
     scale_dependent_curvature,
 )
 
-DATA = Path(__file__).resolve().parents[3] / "shared" / "data" / "topographies"
+DATA = Path(__file__).resolve().parents[1] / "data" / "topographies"
 
 
 def data_file(name: str) -> Path:
-    pytest.importorskip("SurfaceTopography")
-    if not (DATA / name).is_file():
-        pytest.skip(f"test data {name} not available")
-    return DATA / name
+    """A real instrument file kept in the repository (tests/data/topographies/README.md)."""
+    import SurfaceTopography  # noqa: F401  (a test dependency: it must be installed)
+
+    path = DATA / name
+    assert path.is_file(), f"test data {path} missing from the repository"
+    return path
 
 
 def grid(shape, pixel_size):

@@ -21,17 +21,17 @@ import roughcontact as rc
 from roughcontact import ParameterError
 from roughcontact.topography import file_kind, load_topography
 
-DATA = Path(__file__).resolve().parents[3] / "shared" / "data" / "topographies"
+DATA = Path(__file__).resolve().parents[1] / "data" / "topographies"
 UNITS = {"m": 1.0, "mm": 1e-3, "um": 1e-6, "\u00b5m": 1e-6, "nm": 1e-9}
 
 
 def data_file(name: str) -> Path:
-    """The path of a shared test file; skipped where it or SurfaceTopography is absent."""
-    pytest.importorskip("SurfaceTopography")
-    p = DATA / name
-    if not p.is_file():
-        pytest.skip(f"test data {name} not available")
-    return p
+    """A real instrument file kept in the repository (tests/data/topographies/README.md)."""
+    import SurfaceTopography  # noqa: F401  (a test dependency: it must be installed)
+
+    path = DATA / name
+    assert path.is_file(), f"test data {path} missing from the repository"
+    return path
 
 
 def nanoscope(path: Path, image: int = 0) -> dict:

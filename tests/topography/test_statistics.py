@@ -25,7 +25,7 @@ from roughcontact.topography.statistics import (
     scale_statistics,
 )
 
-DATA = Path(__file__).resolve().parents[2].parent / "shared" / "data" / "topographies"
+DATA = Path(__file__).resolve().parents[1] / "data" / "topographies"
 NM = 1e-9
 
 
@@ -277,9 +277,6 @@ def test_bad_input_is_one_line():
 
 def _nid():
     path = DATA / "nid-1.nid"
-    if not path.exists():
-        pytest.skip(f"{path} not present")
-    pytest.importorskip("SurfaceTopography")
     from roughcontact.topography import detrend, load_topography
 
     return detrend(load_topography(path), mode="plane")
