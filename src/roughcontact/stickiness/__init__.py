@@ -44,8 +44,7 @@ __all__ = [
 
 #: Every criterion by key, in the order of the tables.
 CRITERIA = {
-    m.KEY: m.evaluate
-    for m in (pastewka_robbins, persson_tosatti, fuller_tabor, dahlquist, muser)
+    m.KEY: m.evaluate for m in (pastewka_robbins, persson_tosatti, fuller_tabor, dahlquist, muser)
 }
 
 

@@ -33,9 +33,7 @@ def evaluate(inputs) -> CriterionResult:
         notes.append("Young's modulus unknown: E* used (at most 4/3 larger than E)")
     if inputs.units != "SI":
         D = math.nan
-        sticky, verdict, margin = no_verdict(
-            "a modulus rule in Pa; lattice units carry no scale"
-        )
+        sticky, verdict, margin = no_verdict("a modulus rule in Pa; lattice units carry no scale")
     else:
         D = E / THRESHOLD_PA
         sticky, verdict, margin = decide(D, 1.0, True)

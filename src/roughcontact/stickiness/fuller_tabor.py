@@ -56,7 +56,9 @@ def evaluate(inputs, *, threshold: float = THRESHOLD) -> CriterionResult:
         verdict=verdict,
         margin=margin,
         validated=VALIDATED,
-        notes=("threshold θ = 10 is a convention (pull-off ≈ 4 % of the smooth value)",
-               "E* in θ (authors using K = 4E*/3 get a θ 4/3 larger)"),  # fmt: skip
+        notes=(
+            "threshold θ = 10 is a convention (pull-off ≈ 4 % of the smooth value)",
+            "E* in θ (authors using K = 4E*/3 get a θ 4/3 larger)",
+        ),  # fmt: skip
         values=values,
     )

@@ -123,13 +123,22 @@ def _power_integral(k: float, a: float, b: float, exponent: float) -> float:
 
 
 def self_affine_moments(
-    *, hurst, rms_slope, short_cutoff, long_cutoff, size=None, rolloff=True, orders=(0, 1, 2, 4)
+    *,
+    hurst,
+    rms_slope=None,
+    short_cutoff,
+    long_cutoff,
+    size=None,
+    rolloff=True,
+    orders=(0, 1, 2, 4),
+    rms_height=None,
 ) -> dict:
     """Closed-form moments ``M_k = ∫ d²q |q|^k C(q)`` of the self-affine spectrum.
 
     ``C(q) = C0 (q/q_L)^(-2-2H)`` for ``q_L <= q <= q_s`` and ``C0`` for
     ``2π/size <= q < q_L`` (``rolloff``; nothing below q_L without it), normalised so that
-    ``M_2 = h'_rms^2``. Continuum integrals: a periodic grid sums the same spectrum over
+    ``M_2 = h'_rms^2`` (or ``M_0 = h_rms^2`` when ``rms_height`` is given instead).
+    Continuum integrals: a periodic grid sums the same spectrum over
     its discrete wavevectors, which differ by a few per cent for a few hundred modes.
 
     Parameters
@@ -137,7 +146,7 @@ def self_affine_moments(
     hurst : float
         H in (0, 1].
     rms_slope : float
-        h'_rms > 0.
+        h'_rms > 0. Give exactly one of ``rms_slope`` and ``rms_height`` [length].
     short_cutoff, long_cutoff : float
         λs < L [length].
     size : float, optional
@@ -155,7 +164,8 @@ def self_affine_moments(
     H = positive("hurst", hurst)
     if H > 1:
         raise ParameterError(f"hurst must be in (0, 1], got {hurst!r}")
-    s = positive("rms_slope", rms_slope)
+    if (rms_slope is None) == (rms_height is None):
+        raise ParameterError("give exactly one of rms_slope and rms_height")
     lam_s = positive("short_cutoff", short_cutoff)
     lam_L = positive("long_cutoff", long_cutoff)
     if lam_s >= lam_L:
@@ -170,14 +180,17 @@ def self_affine_moments(
             m += _power_integral(k, q_min, q_L, 0.0)
         return 2.0 * math.pi * m
 
-    scale = s**2 / raw(2)
+    if rms_slope is not None:
+        scale = positive("rms_slope", rms_slope) ** 2 / raw(2)
+    else:
+        scale = positive("rms_height", rms_height) ** 2 / raw(0)
     return {k: scale * raw(k) for k in orders}
 
 
 def self_affine_inputs(
     *,
     hurst,
-    rms_slope,
+    rms_slope=None,
     short_cutoff,
     long_cutoff,
     contact_modulus,
@@ -187,19 +200,21 @@ def self_affine_inputs(
     rolloff=True,
     youngs_modulus=math.nan,
     units="lattice",
+    rms_height=None,
 ) -> CriterionInputs:
     """:class:`CriterionInputs` of a self-affine surface from its spectrum in closed form
-    (:func:`self_affine_moments`; lengths, pressures in consistent units)."""
+    (:func:`self_affine_moments`: one of ``rms_slope`` and ``rms_height``; lengths,
+    pressures in consistent units)."""
     m = self_affine_moments(
         hurst=hurst, rms_slope=rms_slope, short_cutoff=short_cutoff,
-        long_cutoff=long_cutoff, size=size, rolloff=rolloff,
+        long_cutoff=long_cutoff, size=size, rolloff=rolloff, rms_height=rms_height,
     )  # fmt: skip
     return CriterionInputs(
         contact_modulus=float(contact_modulus),
         work_of_adhesion=float(work_of_adhesion),
         interaction_range=float(interaction_range),
         rms_height=math.sqrt(m[0]),
-        rms_slope=float(rms_slope),
+        rms_slope=math.sqrt(m[2]),
         rms_curvature=math.sqrt(m[4]),
         half_derivative_variance=m[1],
         hurst=float(hurst),

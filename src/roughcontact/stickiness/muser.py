@@ -34,11 +34,10 @@ def evaluate(inputs) -> CriterionResult:
         values = {}
     else:
         Rc = 2.0 / inputs.rms_curvature
-        mu = (Rc * inputs.work_of_adhesion**2
-              / (inputs.contact_modulus**2 * inputs.interaction_range**3)) ** (1.0 / 3.0)  # fmt: skip
-        regime = (
-            f"a regime indicator, not a stickiness rule (μT = {mu:.3g}: "
-            + ("short-range, JKR-like)" if mu > 1 else "long-range, DMT-like)")
+        E, dr = inputs.contact_modulus, inputs.interaction_range
+        mu = (Rc * inputs.work_of_adhesion**2 / (E**2 * dr**3)) ** (1.0 / 3.0)
+        regime = f"a regime indicator, not a stickiness rule (μT = {mu:.3g}: " + (
+            "short-range, JKR-like)" if mu > 1 else "long-range, DMT-like)"
         )
         values = {"asperity_radius": Rc, "regime": "JKR-like" if mu > 1 else "DMT-like"}
     sticky, verdict, margin = no_verdict(regime)

@@ -22,13 +22,13 @@ KEY = "pastewka_robbins"
 VALIDATED = (
     "GFMD simulations of self-affine surfaces (H = 0.3-0.8, h'rms = 0.1-0.3, λs = 4-32 a0, "
     "short-range 9-3 wall; Pastewka & Robbins 2014, Fig. 4); judged on the reproduction's "
-    "72 parameter sets below"
+    "72 parameter sets (reproduction/README.md)"
 )
 
 
 def evaluate(inputs, *, kappa_rep: float = KAPPA_REP) -> CriterionResult:
     """Eq. 10 on :class:`~roughcontact.stickiness.inputs.CriterionInputs` (needs Δr, h''rms)."""
-    notes = ["d_rep = 4 h'rms/h''rms (Eq. 9), kappa_rep = %g" % kappa_rep]
+    notes = [f"d_rep = 4 h'rms/h''rms (Eq. 9), kappa_rep = {kappa_rep:g}"]
     values = {}
     if math.isnan(inputs.interaction_range) or math.isnan(inputs.rms_curvature):
         sticky, verdict, margin = no_verdict("needs the interaction range and h''rms")

@@ -68,7 +68,9 @@ def evaluate(inputs) -> CriterionResult:
         verdict=verdict,
         margin=margin,
         validated=VALIDATED,
-        notes=("full conformal contact assumed; the interaction range does not enter",
-               "true area A*/A0 = 1 + h'rms²/2 (small slopes)"),  # fmt: skip
+        notes=(
+            "full conformal contact assumed; the interaction range does not enter",
+            "true area A*/A0 = 1 + h'rms²/2 (small slopes)",
+        ),  # fmt: skip
         values=values,
     )
