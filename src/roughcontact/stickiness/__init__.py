@@ -23,7 +23,13 @@ reproduction's parameter sets is :mod:`roughcontact.studies.criteria_claims`.
 from __future__ import annotations
 
 from . import dahlquist, fuller_tabor, muser, pastewka_robbins, persson_tosatti
-from .inputs import CriterionInputs, inputs_from_heights, self_affine_inputs, self_affine_moments
+from .inputs import (
+    CriterionInputs,
+    inputs_from_criterion,
+    inputs_from_heights,
+    self_affine_inputs,
+    self_affine_moments,
+)
 from .result import NO_VERDICT, CriterionResult
 from .table import agreement, criteria_table, format_table
 
@@ -37,6 +43,7 @@ __all__ = [
     "evaluate",
     "evaluate_all",
     "format_table",
+    "inputs_from_criterion",
     "inputs_from_heights",
     "self_affine_inputs",
     "self_affine_moments",

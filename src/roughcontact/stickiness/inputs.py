@@ -34,7 +34,13 @@ import numpy as np
 
 from .._validate import ParameterError, json_ready, positive
 
-__all__ = ["CriterionInputs", "inputs_from_heights", "self_affine_inputs", "self_affine_moments"]
+__all__ = [
+    "CriterionInputs",
+    "inputs_from_criterion",
+    "inputs_from_heights",
+    "self_affine_inputs",
+    "self_affine_moments",
+]
 
 UNITS = ("lattice", "SI")
 
@@ -262,4 +268,49 @@ def inputs_from_heights(
         youngs_modulus=float(youngs_modulus),
         units=units,
         source="height map (spectral moments)",
+    )
+
+
+def inputs_from_criterion(
+    result, *, rms_height=None, hurst=None, short_cutoff=None, long_cutoff=None
+) -> CriterionInputs:
+    """SI :class:`CriterionInputs` from a :class:`roughcontact.criterion.StickinessCriterion`.
+
+    h''rms is the result's (or ``4 h'rms/d_rep`` when d_rep was given). With ``hurst``,
+    ``short_cutoff`` and ``long_cutoff`` [m] the spectrum's moments come in closed form,
+    normalised to the result's h'rms (h_rms and M_1 then follow; h''rms stays the
+    given one); ``rms_height`` [m] overrides h_rms. Without them h_rms and M_1 are
+    unknown (NaN) and the criteria that need them give no verdict.
+    """
+    curv = result.rms_curvature
+    if not math.isfinite(curv):
+        curv = 4.0 * result.rms_slope / result.d_rep
+    h_rms = m1 = math.nan
+    H = math.nan
+    spectral = (hurst, short_cutoff, long_cutoff)
+    if any(v is not None for v in spectral):
+        if any(v is None for v in spectral):
+            raise ParameterError(
+                "give all of hurst, short_cutoff and long_cutoff "
+                "(--hurst, --short-cutoff, --long-cutoff) or none"
+            )
+        H = float(hurst)
+        m = self_affine_moments(hurst=H, rms_slope=result.rms_slope,
+                                short_cutoff=short_cutoff, long_cutoff=long_cutoff)  # fmt: skip
+        h_rms, m1 = math.sqrt(m[0]), m[1]
+    if rms_height is not None:
+        h_rms = positive("rms_height", rms_height)
+    return CriterionInputs(
+        contact_modulus=result.contact_modulus,
+        work_of_adhesion=result.work_of_adhesion,
+        interaction_range=result.interaction_range,
+        rms_height=h_rms,
+        rms_slope=result.rms_slope,
+        rms_curvature=curv,
+        half_derivative_variance=m1,
+        hurst=H,
+        youngs_modulus=result.youngs_modulus,
+        units="SI",
+        source="roughcontact criterion inputs"
+        + (" and the self-affine spectrum (closed form)" if math.isfinite(m1) else ""),
     )
