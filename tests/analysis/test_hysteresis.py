@@ -124,3 +124,28 @@ def test_no_retraction_and_open_cycles_are_said():
         length_scale=1e-9, pressure_scale=1e6,
     )  # fmt: skip
     assert hy.dissipated_energy_si == pytest.approx(hy.dissipated_energy * 1e-3)
+
+
+def test_path_analysis_and_collect_carry_the_hysteresis():
+    from roughcontact.analysis.path_analysis import analyze_path
+    from roughcontact.studies.collect import _fill_hysteresis
+
+    h = rc.self_affine((64, 64), hurst=0.8, rms_slope=0.1, short_cutoff=4, seed=1)
+    sub = rc.Substrate((64, 64), contact_modulus=1.0)
+    law = rc.SmoothLJ93(range=1.0, work_of_adhesion=0.2)
+    offsets = np.linspace(h.max() + 2.5, h.max() - 0.5, 31)
+    ds = rc.approach_retract(h, sub, law, offsets=offsets, retract=True, tol=1e-6)
+    a = analyze_path(ds, target_area=0.02, hard_wall_reference=False, allow_unconverged=True)
+    hy = hysteresis(ds)
+    assert a.dissipated_energy == hy.dissipated_energy and a.jumps == hy.jumps
+    assert a.to_dict()["dissipated_energy"] == pytest.approx(hy.dissipated_energy)
+    assert hy.closed and hy.jumps_in > 0 and hy.jumps_out > 0
+    # an adhesive cycle dissipates: W exceeds the bound of the trapezoid over the jumps
+    assert hy.dissipated_energy > hy.energy_uncertainty > 0
+    # a collected task analysed before the hysteresis existed gets it from its steps
+    steps = {k: np.asarray(ds[k].values) for k in ("offset", "load", "branch", "jump")}
+    data = {k: ("task", np.array([np.nan])) for k in ("dissipated_energy",
+            "dissipated_energy_bound", "jumps", "energy_per_jump")}  # fmt: skip
+    _fill_hysteresis(data, [("done", "", {}, steps)])
+    assert data["dissipated_energy"][1][0] == pytest.approx(hy.dissipated_energy)
+    assert data["jumps"][1][0] == hy.jumps
