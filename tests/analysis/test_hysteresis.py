@@ -149,3 +149,49 @@ def test_path_analysis_and_collect_carry_the_hysteresis():
     _fill_hysteresis(data, [("done", "", {}, steps)])
     assert data["dissipated_energy"][1][0] == pytest.approx(hy.dissipated_energy)
     assert data["jumps"][1][0] == hy.jumps
+
+
+def test_hysteresis_figure_shows_the_cycle():
+    pytest.importorskip("matplotlib")
+    from roughcontact.errors import ParameterError
+    from roughcontact.plot.hysteresis import hysteresis_figure
+
+    ds, n = _simulated_sphere(2.0)
+    fig = hysteresis_figure(ds, label="JKR sphere")
+    ax = fig.axes[0]
+    hy = hysteresis(ds)
+    assert f"{hy.dissipated_energy:.3g}" in ax.get_title()
+    lines = {ln.get_label(): ln for ln in ax.get_lines()}
+    np.testing.assert_allclose(
+        lines["approach"].get_ydata(), ds["load"].values[ds["branch"].values == "approach"]
+    )
+    with pytest.raises(ParameterError, match="retraction"):
+        hysteresis_figure(ds.isel(step=ds["branch"].values == "approach"))
+
+
+def test_analyze_cli_prints_the_hysteresis_and_saves_its_figure(tmp_path):
+    pytest.importorskip("matplotlib")
+    import json
+
+    from click.testing import CliRunner
+
+    from roughcontact.cli.main import main
+
+    ds, n = _simulated_sphere(2.0)
+    f = tmp_path / "sphere.nc"
+    ds.to_netcdf(f, engine="h5netcdf")
+    png = tmp_path / "cycle.png"
+    args = [
+        "analyze",
+        str(f),
+        "--no-hard-wall-reference",
+        "--json",
+        "--hysteresis-figure",
+        str(png),
+    ]
+    r = CliRunner().invoke(main, args)
+    assert r.exit_code == 0, r.output
+    out = json.loads(r.stdout)
+    hy = hysteresis(ds)
+    assert out["dissipated_energy"] == pytest.approx(hy.dissipated_energy)
+    assert out["jumps"] == hy.jumps and png.stat().st_size > 1000
