@@ -31,7 +31,7 @@ from .inputs import (
     self_affine_moments,
 )
 from .result import NO_VERDICT, CriterionResult
-from .table import agreement, criteria_table, format_table
+from .table import agreement, criteria_table, criteria_table_for_heights, format_table
 
 __all__ = [
     "CRITERIA",
@@ -40,6 +40,7 @@ __all__ = [
     "CriterionResult",
     "agreement",
     "criteria_table",
+    "criteria_table_for_heights",
     "evaluate",
     "evaluate_all",
     "format_table",

@@ -5,10 +5,10 @@ radius R_s with Gaussian heights of spread σ_s,
 
 .. math::
     \theta = \frac{E^* \sigma_s^{3/2}}{w R_s^{1/2}}
-    \qquad (:func:`roughcontact.theory.greenwood_williamson.fuller_tabor_parameter`),
 
-with σ_s and R_s the summit statistics of Nayak (1971) and McCool (1986) from the
-spectral moments. Fuller & Tabor's pull-off falls steeply with θ and never reaches
+(:func:`roughcontact.theory.greenwood_williamson.fuller_tabor_parameter`), with σ_s
+and R_s the summit statistics of Nayak (1971) and McCool (1986) from the spectral
+moments. Fuller & Tabor's pull-off falls steeply with θ and never reaches
 exactly zero, so the threshold is a convention: here **sticky if θ < 10**, where the
 pull-off of the summit bed is still ≳ 4 % of the smooth-summit value
 (:func:`~roughcontact.theory.greenwood_williamson.greenwood_williamson`, JKR summits:

@@ -240,18 +240,29 @@ def inputs_from_heights(
     hurst=math.nan,
     youngs_modulus=math.nan,
     units="lattice",
+    periodic=True,
 ) -> CriterionInputs:
-    """:class:`CriterionInputs` measured on one period of a periodic height map.
+    """:class:`CriterionInputs` measured on a height map.
 
     ``M_k`` are sums over the discrete wavevectors of ``|FFT(h)|^2`` (spectral
     derivatives; the mean removed), ``heights`` [length] on a grid of ``pixel_size``.
+    ``periodic=False`` (a measured scan, a window of a larger surface): the mean plane is
+    removed and a 2D Hann window applied, its power loss divided out, so that the edges
+    do not add spurious short-wavelength power (the moments are then estimates).
     """
     h = np.asarray(heights, dtype=float)
     if h.ndim != 2 or min(h.shape) < 2 or not np.all(np.isfinite(h)):
         raise ParameterError("heights must be a finite 2D array of at least 2 x 2")
     a = positive("pixel_size", pixel_size)
     nx, ny = h.shape
-    spec = np.abs(np.fft.fft2(h - h.mean())) ** 2 / (nx * ny) ** 2
+    h = h - h.mean()
+    if not periodic:
+        i, j = np.meshgrid(np.arange(nx), np.arange(ny), indexing="ij")
+        A = np.column_stack([i.ravel(), j.ravel(), np.ones(h.size)])
+        h = h - (A @ np.linalg.lstsq(A, h.ravel(), rcond=None)[0]).reshape(h.shape)
+        window = np.outer(np.hanning(nx), np.hanning(ny))
+        h = h * window / math.sqrt(float(np.mean(window**2)))
+    spec = np.abs(np.fft.fft2(h)) ** 2 / (nx * ny) ** 2
     qx = 2 * np.pi * np.fft.fftfreq(nx, d=a)
     qy = 2 * np.pi * np.fft.fftfreq(ny, d=a)
     q = np.hypot(qx[:, None], qy[None, :])
@@ -267,7 +278,7 @@ def inputs_from_heights(
         hurst=float(hurst),
         youngs_modulus=float(youngs_modulus),
         units=units,
-        source="height map (spectral moments)",
+        source="height map (spectral moments" + ("" if periodic else ", Hann window") + ")",
     )
 
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from .result import NO_VERDICT
 
-__all__ = ["agreement", "criteria_table", "format_table"]
+__all__ = ["agreement", "criteria_table", "criteria_table_for_heights", "format_table"]
 
 
 def agreement(results, simulated: str | None = None) -> dict:
@@ -93,3 +93,38 @@ def format_table(table: dict) -> str:
     for c in table["criteria"]:
         lines.append(f"  {c['name']}: {c['validated']}")
     return "\n".join(lines)
+
+
+def criteria_table_for_heights(
+    heights,
+    *,
+    pixel_size,
+    contact_modulus,
+    work_of_adhesion,
+    interaction_range=float("nan"),
+    youngs_modulus=float("nan"),
+    units="SI",
+    periodic=False,
+    simulated: str | None = None,
+) -> dict:
+    """:func:`criteria_table` of a height map (a scan: ``periodic=False``, SI by default).
+
+    ``heights`` and ``pixel_size`` [m], ``contact_modulus``/``youngs_modulus`` [Pa],
+    ``work_of_adhesion`` [J/m^2], ``interaction_range`` [m] (or all in lattice units with
+    ``units="lattice"``); the moments come from
+    :func:`~roughcontact.stickiness.inputs.inputs_from_heights`. ``simulated``: the
+    simulation's verdict on the same surface, shown beside. For ``roughcontact stick``.
+    """
+    from .inputs import inputs_from_heights
+
+    inputs = inputs_from_heights(
+        heights,
+        contact_modulus=contact_modulus,
+        work_of_adhesion=work_of_adhesion,
+        interaction_range=interaction_range,
+        pixel_size=pixel_size,
+        youngs_modulus=youngs_modulus,
+        units=units,
+        periodic=periodic,
+    )
+    return criteria_table(inputs, simulated=simulated)
