@@ -92,7 +92,7 @@ class Hysteresis:
     energy_per_jump : float
         ``W/jumps`` (NaN without jumps).
     closed : bool
-        The retraction returns to the first offset with |N| below ``load_tolerance``.
+        The retraction returns to the first offset with ``|N|`` below ``load_tolerance``.
     dissipated_energy_si : float
         W in J/m² when the path's length and pressure scales are given, else NaN.
     warnings : tuple of str
@@ -150,8 +150,8 @@ def hysteresis_from_steps(
     length_scale, pressure_scale : float, optional
         Metres per length unit and pascals per pressure unit, for ``dissipated_energy_si``.
     load_tolerance : float, optional
-        |N/A0| below which the end of the retraction counts as separated; default 1e-6
-        of the largest |N/A0| on the path.
+        ``|N/A0|`` below which the end of the retraction counts as separated; default 1e-6
+        of the largest ``|N/A0|`` on the path.
     """
     d = np.asarray(offset, dtype=float).ravel()
     n = np.asarray(load, dtype=float).ravel()

@@ -19,7 +19,8 @@ with its standard error (``kappa_fit``: a different quantity from ``kappa``, the
 the target area, and labelled differently everywhere). All areas and loads per
 :math:`A_0`; lengths in the path's units.
 
-**Verdict.** One rule (:mod:`.stickiness`): measured sticky ⇔ κ < 0 at the target area,
+**Verdict.** One rule (:mod:`roughcontact.analysis.stickiness`): measured sticky ⇔
+κ < 0 at the target area,
 i.e. :math:`1/\kappa < 0`; predicted: the same rule on Eq. 7's
 :math:`1/\kappa = 1/\kappa_{rep} - 1/\kappa_{att}` (Eq. 10), with the measured κ_rep
 (``predicted_*``) and, for reference, the continuum hard-wall κ_rep = 2
@@ -71,7 +72,8 @@ class PathAnalysis:
     ``kappa`` is the ratio :math:`h'_{rms}E^*A_{rep}/N` at the target area and
     ``inverse_kappa`` its inverse (the additive quantity over seeds); ``kappa_fit`` the
     slope of :math:`A_{rep}(N)` (a different quantity). ``sticky`` (measured) is
-    :func:`.stickiness.is_sticky` of κ, ``verdict`` its words; the pull-off force
+    :func:`roughcontact.analysis.stickiness.is_sticky` of κ, ``verdict`` its words; the
+    pull-off force
     (``pull_off``, per A0; NaN when the retraction never separated the surfaces) is not
     part of the verdict. ``predicted_*``: the Pastewka–Robbins theory (Eqs. 6, 7, 10,
     with the measured κ_rep and the measured d_rep; ``*_from_curvature`` with d_rep =
