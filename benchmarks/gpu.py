@@ -27,8 +27,9 @@ CPU (NumPy, scipy.fft on all cores) for the GPU/CPU ratio; ``--cpu-path`` also t
     python benchmarks/gpu.py --dtype float32 --json gpu32.json
 
 Surface generation and the hard-wall solve that fixes the offsets are never timed; each
-size starts with an untimed warm-up solve on the device (CUDA context, cuFFT plans,
-kernel compilation). BLAS and OpenMP pools run on their libraries' defaults unless
+timed solve follows an untimed warm-up of :data:`WARMUP_ITER` iterations of the same
+solve, at the same size and dtype (CUDA context, cuFFT plans of every grid the solve
+uses, kernel compilation), so ``--repeats 1`` times a warm solve. BLAS and OpenMP pools run on their libraries' defaults unless
 ``--blas-threads N`` is given, which is then enforced and verified (``_threads.py``); the
 header and the JSON (``meta.threads``) record the threads per library, CPUs and versions.
 """
@@ -53,6 +54,8 @@ from hardwall import machine_meta, surface
 import roughcontact as rc
 
 A0 = ES = 1.0
+#: iterations of the untimed warm-up solve before each timed one
+WARMUP_ITER = 5
 
 
 def _xp(device: str):
@@ -120,7 +123,6 @@ def bench_size(n: int, args, device: str) -> dict:
     law = rc.SmoothLJ93.from_adhesion_length(args.adhesion_length)
     d_hw = rc.solve(h, sub, rc.HardWall(), load=args.end_load).offset  # untimed, CPU
     h_dev = rc.to_device(h, device, args.dtype)
-    rc.solve(h_dev[:64, :64], rc.Substrate((64, 64)), rc.HardWall(), load=args.load)  # warm-up
     row = {"n": n, "device": device, "dtype": args.dtype}
     row["fft_seconds"] = fft_pair_seconds(n, device, args.dtype)
     grid_bytes = n * n * 8
@@ -128,6 +130,9 @@ def bench_size(n: int, args, device: str) -> dict:
         ("hardwall", rc.HardWall(), {"load": args.load}),
         ("adhesive", law, {"offset": d_hw + A0}),
     ):
+        # untimed warm-up at the measured size and dtype (a few iterations of the same
+        # solve, its nested coarse grids included): kernel compilation and FFT plans
+        rc.solve(h_dev, sub, lw, device=device, dtype=args.dtype, max_iter=WARMUP_ITER, **control)
         runs = [timed_solve(h_dev, sub, lw, device, args.dtype, **control)]
         runs += [
             timed_solve(h_dev, sub, lw, device, args.dtype, **control)
