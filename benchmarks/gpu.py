@@ -29,9 +29,10 @@ CPU (NumPy, scipy.fft on all cores) for the GPU/CPU ratio; ``--cpu-path`` also t
 Surface generation and the hard-wall solve that fixes the offsets are never timed; each
 timed solve follows an untimed warm-up of :data:`WARMUP_ITER` iterations of the same
 solve, at the same size and dtype (CUDA context, cuFFT plans of every grid the solve
-uses, kernel compilation), so ``--repeats 1`` times a warm solve. BLAS and OpenMP pools run on their libraries' defaults unless
-``--blas-threads N`` is given, which is then enforced and verified (``_threads.py``); the
-header and the JSON (``meta.threads``) record the threads per library, CPUs and versions.
+uses, kernel compilation), so ``--repeats 1`` times a warm solve. BLAS and OpenMP pools
+run on their libraries' defaults unless ``--blas-threads N`` is given, which is then
+enforced and verified (``_threads.py``); the header and the JSON (``meta.threads``)
+record the threads per library, CPUs and versions.
 """
 
 from __future__ import annotations
@@ -121,7 +122,8 @@ def bench_size(n: int, args, device: str) -> dict:
     h = surface(n, args.seed)
     sub = rc.Substrate((n, n), contact_modulus=ES, pixel_size=A0)
     law = rc.SmoothLJ93.from_adhesion_length(args.adhesion_length)
-    d_hw = rc.solve(h, sub, rc.HardWall(), load=args.end_load).offset  # untimed, CPU
+    # untimed, on the device (on a 16-core CPU it took longer than the timed GPU solves)
+    d_hw = rc.solve(h, sub, rc.HardWall(), load=args.end_load, device=device).offset
     h_dev = rc.to_device(h, device, args.dtype)
     row = {"n": n, "device": device, "dtype": args.dtype}
     row["fft_seconds"] = fft_pair_seconds(n, device, args.dtype)
@@ -133,11 +135,8 @@ def bench_size(n: int, args, device: str) -> dict:
         # untimed warm-up at the measured size and dtype (a few iterations of the same
         # solve, its nested coarse grids included): kernel compilation and FFT plans
         rc.solve(h_dev, sub, lw, device=device, dtype=args.dtype, max_iter=WARMUP_ITER, **control)
-        runs = [timed_solve(h_dev, sub, lw, device, args.dtype, **control)]
-        runs += [
-            timed_solve(h_dev, sub, lw, device, args.dtype, **control)
-            for _ in range(args.repeats - 1)
-        ]
+        repeats = args.cpu_repeats if device == "cpu" else args.repeats
+        runs = [timed_solve(h_dev, sub, lw, device, args.dtype, **control) for _ in range(repeats)]
         r = dict(runs[0])
         r["seconds"] = float(np.median([x["seconds"] for x in runs]))
         r["ms_per_iteration"] = 1e3 * r["seconds"] / max(r["iterations"], 1)
@@ -151,7 +150,7 @@ def bench_path(n: int, args, device: str) -> dict:
     h = surface(n, args.seed)
     sub = rc.Substrate((n, n), contact_modulus=ES, pixel_size=A0)
     law = rc.SmoothLJ93.from_adhesion_length(args.adhesion_length)
-    d_hw = rc.solve(h, sub, rc.HardWall(), load=args.end_load).offset  # untimed
+    d_hw = rc.solve(h, sub, rc.HardWall(), load=args.end_load, device=device).offset  # untimed
     d_start, d_end = float(h.max()) + A0, d_hw + A0
     half = args.path_steps // 2
     offsets = d_start - (d_start - d_end) * np.arange(0, half + 1) / half  # 2 half + 1 states
@@ -189,7 +188,7 @@ def fmt(row: dict) -> list[str]:
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--sizes", type=int, nargs="+", default=[1024, 2048, 4096, 8192])
+    ap.add_argument("--sizes", type=int, nargs="*", default=[1024, 2048, 4096, 8192])
     ap.add_argument("--device", default="cuda")
     ap.add_argument("--dtype", choices=["float64", "float32"], default="float64")
     ap.add_argument("--cpu-sizes", type=int, nargs="*", default=[1024, 2048])
@@ -200,6 +199,7 @@ def main(argv=None) -> int:
     ap.add_argument("--end-load", type=float, default=5e-4, help="sets the deepest offset")
     ap.add_argument("--adhesion-length", type=float, default=0.005, help="ℓa / a0")
     ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument("--cpu-repeats", type=int, default=3, help="repeats of the CPU solves")
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument(
         "--blas-threads",
