@@ -4,9 +4,10 @@ On a GPU every conversion of a device array to a Python scalar (``float(x)``, ``
 ``int(x)``, an index) waits for the device (a host sync), and every array the step
 creates is a kernel launch and an allocation. Both are counted here without a GPU, on
 ``array_api_strict`` arrays (a strict array-API library on the CPU, standing for CuPy):
-calls of ``Array.__float__``/``__bool__``/``__int__``/``__index__``/``__complex__``
-("syncs"), conversions of arrays of more than a few elements to NumPy (``__array__``,
-``__dlpack__``: "host copies"), and every array created (``Array._new``).
+calls of ``Array.__float__``/``__bool__``/``__int__``/``__index__``/``__complex__`` and
+conversions to NumPy (``__array__``, ``__dlpack__``: several scalars fetched at once) are
+"syncs"; those conversions of more than a few elements are also "host copies"; and every
+array created (``Array._new``) is counted.
 
 "Per iteration" is the marginal count: the same solve run to ``--iterations`` and to
 twice that many iterations (a tolerance it cannot meet), the difference divided by the
@@ -30,7 +31,7 @@ import roughcontact as rc
 
 SYNCS = ("__float__", "__bool__", "__int__", "__index__", "__complex__")
 COPIES = ("__array__", "__dlpack__")
-#: conversions of arrays of at most this many elements are scalars (a few sites)
+#: conversions of arrays of more than this many elements count as host copies
 SMALL = 16
 
 
@@ -42,20 +43,22 @@ def counting():
     counts = {"syncs": 0, "copies": 0, "arrays": 0}
     saved = {name: Array.__dict__[name] for name in (*SYNCS, *COPIES, "_new")}
 
-    def wrap(name, key, small_ok=False):
+    def wrap(name, copy=False):
         original = saved[name]
 
         def hook(self, *args, **kwargs):
-            if not small_ok or self.size is None or self.size > SMALL:
-                counts[key] += 1
+            # any transfer waits for the device; more than a few elements is also a copy
+            counts["syncs"] += 1
+            if copy and (self.size is None or self.size > SMALL):
+                counts["copies"] += 1
             return original(self, *args, **kwargs)
 
         return hook
 
     for name in SYNCS:
-        setattr(Array, name, wrap(name, "syncs"))
+        setattr(Array, name, wrap(name))
     for name in COPIES:
-        setattr(Array, name, wrap(name, "copies", small_ok=True))
+        setattr(Array, name, wrap(name, copy=True))
     new = saved["_new"].__func__
 
     def counted_new(cls, *args, **kwargs):

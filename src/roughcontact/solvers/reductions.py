@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._backend import array_namespace, is_numpy_array
+from .._backend import array_namespace, is_numpy_array, to_numpy
 
-__all__ = ["DOT_CHUNK", "dot", "total"]
+__all__ = ["DOT_CHUNK", "dot", "fetch", "total"]
 
 
 #: Length of the rows a long NumPy inner product is cut into (see :func:`dot`).
@@ -45,3 +45,19 @@ def total(x) -> float:
         return float(np.add.reduce(x, dtype=np.float64))
     xp = array_namespace(x)
     return float(xp.sum(x, dtype=xp.float64))
+
+
+def fetch(xp, scalars) -> list[float]:
+    """Python floats of several 0-d arrays of namespace ``xp``, in one transfer.
+
+    On a GPU each ``float(x)`` of a device scalar waits for the device (a host sync);
+    stacked, the values come over in one copy. Exact: every value is widened to float64
+    (as ``float`` would) before stacking.
+    """
+    if xp is _NUMPY_XP or all(type(x) is np.ndarray for x in scalars):
+        return [float(x) for x in scalars]
+    wide = [x if x.dtype == xp.float64 else xp.astype(x, xp.float64) for x in scalars]
+    return to_numpy(xp.stack(wide)).tolist()
+
+
+_NUMPY_XP = array_namespace(np.empty(0))
