@@ -38,27 +38,27 @@ step() {  # step SECONDS TITLE COMMAND...: run with a limit, log the time it too
     fi
     $PY -c "import sys, numpy, scipy, array_api_compat, roughcontact; print(sys.version.split()[0], 'numpy', numpy.__version__, 'scipy', scipy.__version__, 'array_api_compat', array_api_compat.__version__, roughcontact.__file__)"
     [ "$DEVICE" != cpu ] && $PY -c "import cupy; print('cupy', cupy.__version__)"
-    step 120 "GPU tests" $PY -m pytest -q -p no:cacheprovider -x \
+    step 90 "GPU tests" $PY -m pytest -q -p no:cacheprovider -x \
         tests/backends/test_cupy.py tests/backends/test_device_detection.py
     cpu=(--cpu-sizes)
     [ -n "$CPU_SIZE" ] && cpu=(--cpu-sizes "$CPU_SIZE" --cpu-repeats 1)
     # shellcheck disable=SC2086
-    step 170 "gpu.py float64" $PY benchmarks/gpu.py --device "$DEVICE" --sizes $SIZES \
+    step 150 "gpu.py float64" $PY benchmarks/gpu.py --device "$DEVICE" --sizes $SIZES \
         "${cpu[@]}" --path-size 0 --repeats 3 --json "$OUTDIR/gpu64.json"
     [ "$PART" = quick ] && exit 0
-    step 130 "paper task ${TASK_SIZE}² on $DEVICE" $PY benchmarks/gpu_task.py \
+    step 120 "paper task ${TASK_SIZE}² on $DEVICE" $PY benchmarks/gpu_task.py \
         --device "$DEVICE" --size "$TASK_SIZE" --json "$OUTDIR/task.json"
     # shellcheck disable=SC2086
-    step 70 "gpu.py float32" $PY benchmarks/gpu.py --device "$DEVICE" --sizes $SIZES \
+    step 60 "gpu.py float32" $PY benchmarks/gpu.py --device "$DEVICE" --sizes $SIZES \
         --cpu-sizes --path-size 0 --repeats 2 --dtype float32 --json "$OUTDIR/gpu32.json"
-    step 50 "task ${SMALL}² on $DEVICE" $PY benchmarks/gpu_task.py --device "$DEVICE" \
+    step 45 "task ${SMALL}² on $DEVICE" $PY benchmarks/gpu_task.py --device "$DEVICE" \
         --size "$SMALL" --json "$OUTDIR/task_small.json"
-    step 70 "task ${SMALL}² on one CPU core" $PY benchmarks/gpu_task.py --device cpu \
+    step 60 "task ${SMALL}² on one CPU core" $PY benchmarks/gpu_task.py --device cpu \
         --threads 1 --size "$SMALL" --json "$OUTDIR/task_small_cpu.json"
-    step 100 "41-state path ${PATH_SIZE}²" $PY benchmarks/gpu.py --device "$DEVICE" \
+    step 90 "41-state path ${PATH_SIZE}²" $PY benchmarks/gpu.py --device "$DEVICE" \
         --sizes --cpu-sizes --path-size "$PATH_SIZE" --json "$OUTDIR/path.json"
     $PY benchmarks/gpu_task.py --write-study "$TMP/one.toml" --size "$SMALL"
-    step 90 "study run ${SMALL}² through Dask on $DEVICE" $PY -c "from roughcontact.cli.main import main; main()" study run \
+    step 60 "study run ${SMALL}² through Dask on $DEVICE" $PY -c "from roughcontact.cli.main import main; main()" study run \
         "$TMP/one.toml" -o "$TMP/study" --device "$DEVICE" --workers 1 --no-progress
     $PY -c "
 import glob, xarray as xr
