@@ -106,7 +106,7 @@ from .line_search import line_minimum
 from .loop_control import ReliableUpdates, StallGuard, stopping
 from .observables import make_result
 from .reductions import dot as _dot
-from .reductions import total
+from .reductions import fetch, total, vdot, vtotal
 from .result import SolveStatus
 
 __all__ = ["minimize_energy"]
@@ -285,7 +285,7 @@ def minimize_energy(
     def imbalance():
         """gr = K w - p_int, without its mean when the uniform mode is rigid (its force
         is the load)."""
-        m = (total(kw) - total(p_near)) / n if rigid else 0.0
+        m = (vtotal(kw) - vtotal(p_near)) / n if rigid else 0.0
         g = work.shifted(gr, kw, m)
         if near is None:
             g -= p_near
@@ -298,13 +298,17 @@ def minimize_energy(
     reliable = ReliableUpdates(tol)
     stiff = diagonal = None
     directions = False  # whether s, ks hold conjugate directions to build on
-    s, ks, z, z_old = (xp.empty_like(gap) for _ in range(4))
+    # zero before the first direction: off NumPy the first one is 0 s - z (beta = 0)
+    new = xp.empty_like if work.inplace else xp.zeros_like
+    s, ks, z, z_old = (new(gap) for _ in range(4))
     gz_old = 1.0
     status, message = SolveStatus.ITERATION_LIMIT, "iteration cap reached"
     residual, it = math.inf, 0
     stall = FloorGuard(StallGuard(dtype_name(h)), dtype_name(h), lambda: _largest(p_near), es, tol)
     while True:
-        residual = max(float(xp.max(gr)), -float(xp.min(gr))) / es
+        # the one host transfer of an iteration besides the line search's (a GPU waits here)
+        gr_max, gr_min = fetch(xp, [xp.max(gr), xp.min(gr)])
+        residual = max(gr_max, -gr_min) / es
         if not math.isfinite(residual):
             status = SolveStatus.NON_FINITE
             message = f"non-finite state at iteration {it} (check inputs and the interaction)"
@@ -332,15 +336,18 @@ def minimize_energy(
             gr, stiff, diagonal, compliance, elastic_pressure, rigid,
             out=z, work=work, fast=fast, result=fast_result, background=overlap,
         )  # fmt: skip
-        gz = _dot(gr, z)
-        # PR+ (gz_old is 0 only at the rounding floor of a deeply compressed state)
-        restart = restart or gz_old == 0
-        beta = 0.0 if restart else max(0.0, (gz - _dot(gr, z_old)) / gz_old)
-        # s = -z + beta s (in place), and below ks = K s = -K z + beta ks
-        s = work.scale_sub(s, beta, z) if beta > 0 else work.negative(s, z)
-        slope0 = _dot(gr, s)
-        if slope0 >= 0:  # not a descent direction: restart along the preconditioned -gr
-            s, slope0, beta = work.negative(s, z), -gz, 0.0
+        if work.inplace:
+            gz = _dot(gr, z)
+            # PR+ (gz_old is 0 only at the rounding floor of a deeply compressed state)
+            restart = restart or gz_old == 0
+            beta = 0.0 if restart else max(0.0, (gz - _dot(gr, z_old)) / gz_old)
+            # s = -z + beta s (in place), and below ks = K s = -K z + beta ks
+            s = work.scale_sub(s, beta, z) if beta > 0 else work.negative(s, z)
+            slope0 = _dot(gr, s)
+            if slope0 >= 0:  # not a descent direction: restart along the preconditioned -gr
+                s, slope0, beta = work.negative(s, z), -gz, 0.0
+        else:  # the same with device scalars, selected by masks (no host sync)
+            s, slope0, beta, gz = _direction_on_device(xp, work, gr, z, z_old, s, gz_old, restart)
         gz_old, directions = gz, True
         if callable(kz):  # K z still on the background thread: ks when the line search needs it
             ks_of_s = functools.partial(_direction_stiffness, work, ks, beta, kz)
@@ -348,7 +355,7 @@ def minimize_energy(
             ks = ks_of_s = _direction_stiffness(work, ks, beta, kz)
         # s.K w from the slope, s.gr = s.K w - s.p_int (s has no mean when the mean is
         # rigid): a dot over the interaction's sites instead of the grid
-        elastic_slope = slope0 + _dot(s if near is None else s[near], p_near)
+        elastic_slope = slope0 + vdot(s if near is None else s[near], p_near)
         alpha, near, p_near = line_minimum(
             interaction,
             gap,
@@ -365,8 +372,8 @@ def minimize_energy(
             status = SolveStatus.LINE_SEARCH_FAILED
             message = f"line search failed at iteration {it}"
             break
-        work.axpy(gap, alpha, s)
-        work.axpy(kw, alpha, ks)
+        gap = work.axpy(gap, alpha, s)
+        kw = work.axpy(kw, alpha, ks)
         exact = False
         gr = imbalance()
 
@@ -415,6 +422,10 @@ def _stiff_sites(interaction, gap, self_stiffness, work=None):
     stiff = curvature > STIFF_FRACTION * self_stiffness
     if not bool(xp.any(stiff)):
         return None, None
+    if near is None and not work.inplace:  # on the whole grid, zero off the stiff sites
+        # (a GPU: no boolean gather, which syncs on CuPy)
+        inverse = 1.0 / (self_stiffness + xp.where(stiff, curvature, 0.0))
+        return stiff, xp.where(stiff, inverse, 0.0)
     diagonal = 1.0 / (self_stiffness + curvature[stiff])
     if near is None:
         return work.sites(stiff), diagonal
@@ -425,10 +436,34 @@ def _stiff_sites(interaction, gap, self_stiffness, work=None):
     return sites, diagonal
 
 
+def _direction_on_device(xp, work, gr, z, z_old, s, gz_old, restart):
+    """The PR+ direction ``s = -z + beta s`` of the main loop, its slope ``gr.s``, ``beta``
+    and ``gr.z``, with the scalars as 0-d device arrays (a GPU: no host sync).
+
+    The same values as the host branches: ``beta = 0`` (a restart, ``gz_old = 0``, or
+    PR+'s clip) gives ``0 s - z = -z`` exactly (``s`` is finite: zero before the first
+    direction), and a direction that does not descend is replaced by ``-z``.
+    """
+    zero = xp.zeros((), dtype=xp.float64, device=array_device(gr))
+    gz = vdot(gr, z)
+    if restart:
+        beta = zero
+    else:
+        pr = (gz - vdot(gr, z_old)) / xp.where(gz_old == zero, 1.0, gz_old)
+        beta = xp.where(gz_old == zero, zero, xp.maximum(pr, zero))
+    s = work.scale_sub(s, beta, z)
+    slope0 = vdot(gr, s)
+    ascent = slope0 >= zero  # not a descent direction: along the preconditioned -gr
+    s = xp.where(ascent, -z, s)
+    return s, xp.where(ascent, -gz, slope0), xp.where(ascent, zero, beta), gz
+
+
 def _direction_stiffness(work, ks, beta, kz):
     """``K s`` for ``s = -z + beta s_old``: ``-K z + beta ks`` (in place on NumPy). ``kz``
     may be a function that waits for ``K z``."""
     kz = kz() if callable(kz) else kz
+    if not work.inplace:  # beta a device scalar (0: -K z exactly; ks is finite)
+        return work.scale_sub(ks, beta, kz)
     return work.scale_sub(ks, beta, kz) if beta > 0 else work.negative(ks, kz)
 
 
@@ -465,6 +500,10 @@ def _precondition(
         # K K^-1 is the identity on the non-uniform modes, and gr has no uniform mode
         # when it is rigid: no second convolution
         return compliance(gr), gr
+    if not work.inplace and diagonal.shape == gr.shape:  # the whole grid's (_stiff_sites)
+        return _precondition_masked(
+            gr, stiff, diagonal, compliance, elastic_pressure, rigid, work, fast
+        )
     soft = work.cast(fast, gr) if fast is not None else xp.asarray(gr, copy=True)
     soft[stiff] = 0.0
     soft_block = compliance(soft, out=result)
@@ -478,3 +517,18 @@ def _precondition(
     if background and fast is not None:
         return z, in_background(elastic_pressure, z_fast, out=result)
     return z, elastic_pressure(z_fast, out=result)
+
+
+def _precondition_masked(gr, stiff, diagonal, compliance, elastic_pressure, rigid, work, fast):
+    """:func:`_precondition` with ``stiff`` a mask and ``diagonal`` on the whole grid (zero
+    off it): ``where`` in place of gathers and scatters, sums as device scalars."""
+    xp = work.xp
+    soft = work.cast(fast, gr) if fast is not None else gr
+    soft_block = compliance(xp.where(stiff, 0.0, soft))
+    z_stiff = gr * diagonal  # zero off the stiff sites
+    shift = 0.0
+    if rigid:  # the mean of z, without a pass of its own
+        stiff_block = vtotal(xp.where(stiff, soft_block, 0.0))
+        shift = (vtotal(soft_block) - stiff_block + vtotal(z_stiff)) / gr.shape[0]
+    z = xp.where(stiff, z_stiff - work.scalar(shift, z_stiff), work.shifted(gr, soft_block, shift))
+    return z, elastic_pressure(work.cast(fast, z) if fast is not None else z)
