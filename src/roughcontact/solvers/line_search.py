@@ -23,6 +23,7 @@ def line_minimum(
     with_pressure=False,
     work=None,
     elastic_slope=None,
+    also=None,
 ):
     """Step ``alpha`` minimising E along ``w + alpha s`` (a root of the directional slope).
 
@@ -37,8 +38,10 @@ def line_minimum(
     grid: none on the padding). ``elastic_slope``, when the caller has it, is ``s.kw``
     (then ``kw`` is not read). ``ks`` (``K s``) may be a function of no arguments giving
     it, called once the band and the curvature at alpha = 0 are done (the caller's ``K z``
-    may still be running).
+    may still be running). ``also``: a list of the caller's device scalars to bring to
+    the host in the line search's first transfer (replaced in place by Python floats).
     """
+    also = [] if also is None else also
     c0 = vdot(s, kw) if elastic_slope is None else elastic_slope
     work = work or Workspace(gap)
     # sites that can feel the interaction for alpha <= 4; the others only matter beyond
@@ -74,8 +77,9 @@ def line_minimum(
         p = interaction.pressure(ga + work.scalar(hi, ga) * sa)
         last.update(pressure=p, sites=sites)
         f_hi = c0 + hi * c1 - vdot(sa, p)
-        c0, c1, slope0, hi, f_hi = fetch(xp, [c0, c1, slope0, hi, f_hi])
+        c0, c1, slope0, hi, f_hi, *also[:] = fetch(xp, [c0, c1, slope0, hi, f_hi, *also])
     else:
+        also[:] = fetch(work.xp, also)
         hi = -slope0 / curv if curv > 0 else 1.0
         hi = min(max(hi, 1e-8), 4.0)
         f_hi = slope(hi)
