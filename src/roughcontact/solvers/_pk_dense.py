@@ -6,14 +6,15 @@ no integer-array assignment. Every pass is over the whole grid, which a GPU does
 bandwidth. Tested to take exactly the steps of the NumPy loop.
 
 Host traffic: the scalars of an iteration (the contact set's size, the load's offset,
-norms, the step length) stay 0-d arrays on the device; the host reads them in two
-transfers per iteration (:func:`.reductions.fetch`), at the two points where the loop
-branches on them: at the top the contact set's size, the residual's two maxima and the
-load after the last projection (which decide on convergence, exact refreshes and
-restarts), and after the step its length (finite or not) and how many sites the
-projection changes (none, a few: point responses, or more: a convolution). Each
-transfer waits for the device (a host sync); before, an iteration made 9-14 of them
-(``benchmarks/host_syncs.py``).
+norms, the step length) stay 0-d arrays on the device; the host reads them
+(:func:`.reductions.fetch`) where the loop branches on them: after the step its length
+(finite or not) and how many sites the projection changes (none; a few: point
+responses; more: a convolution), and at the top the contact set's size, the residual's
+two extremes and the load after a projection (convergence, exact refreshes, restarts).
+When no site changes (most iterations) the next top's quantities are computed before
+the step's transfer and come with it: one transfer per such iteration, two after a
+projection. Each transfer waits for the device (a host sync); before, an iteration made
+9-14 of them (``benchmarks/host_syncs.py``).
 """
 
 from __future__ import annotations
@@ -91,16 +92,26 @@ def iterate_dense(p, pb, substrate):
     status, message = SolveStatus.ITERATION_LIMIT, "iteration cap reached"
     residual, it = math.inf, 0
     stall = StallGuard(dtype_name(hf))
-    while True:
-        n_c = count(c)
-        d = -(total(xp.where(c, s, zero)) / n_c) if load else const(offset, f64)
-        gap = s + in_dt(d)
+    fixed = None if load else in_dt(const(offset, f64))
+
+    def top(s, c, n_c):
+        """The gap, its part on the contact set, the interpenetrating sites off it, and
+        the scalars the host reads: the set's size and the two extremes of the residual."""
+        gap = s + (in_dt(-(total(xp.where(c, s, zero)) / n_c)) if load else fixed)
         g = xp.where(c, gap, zero)
         out = (gap < zero) & ~c  # interpenetrating sites that carry no pressure
-        scalars = [n_c, xp.max(xp.abs(g)), xp.min(xp.where(out, gap, zero))]
-        if p_sum is not None:
-            scalars.append(p_sum)
-        n_c_host, g_max, out_min, *rest = fetch(xp, scalars)  # host sync 1
+        return gap, g, out, [n_c, xp.max(xp.abs(g)), xp.min(xp.where(out, gap, zero))]
+
+    ahead = None  # the top's quantities, computed and fetched with the last step
+    while True:
+        if ahead is None:
+            n_c = count(c)
+            gap, g, out, scalars = top(s, c, n_c)
+            if p_sum is not None:
+                scalars.append(p_sum)
+            n_c_host, g_max, out_min, *rest = fetch(xp, scalars)  # host sync 1
+        else:
+            (gap, g, out, (n_c_host, g_max, out_min)), ahead, rest = ahead, None, []
         if rest and not rest[0] > 0:  # the projection clipped everything: restart from
             # uniform pressure, with plain steps for a while (see _pk_sparse)
             p, delta, p_sum = xp.full_like(p, target / p.shape[0]), False, None
@@ -168,15 +179,20 @@ def iterate_dense(p, pb, substrate):
         p_new = p - tau_dt * t
         clipped = c & (p_new <= zero)
         changed = clipped | out  # where a projection makes p differ from p_new
-        tau_host, n_changed = fetch(xp, [tau, count(changed)])  # host sync 2
+        s_new = s - tau_dt * r  # exact by linearity: G(p - tau t) - h
+        # the next top's quantities if no site changes (the common case), fetched with
+        # the step: one host sync for such an iteration
+        *following, scalars = top(s_new, c, n_c)
+        tau_host, n_changed, *scalars = fetch(xp, [tau, count(changed), *scalars])  # sync 2
         if not math.isfinite(tau_host):
             status = SolveStatus.NON_FINITE
             message = f"breakdown at iteration {it}: non-finite step (check the inputs)"
             break
 
         if n_changed == 0:
-            p, s = p_new, s - tau_dt * r  # exact by linearity: G(p - tau t) - h
+            p, s = p_new, s_new
             exact, delta = False, True
+            ahead = (*following, scalars)
         else:
             # projection, then I_ol: unloaded interpenetrating sites get pressure back
             ol = out | (clipped & (g < zero)) if not pre else out
@@ -187,7 +203,7 @@ def iterate_dense(p, pb, substrate):
             correction = p - p_new
             # s = G(p_new + correction) - h: point responses for a few sites, else a
             # convolution of the correction
-            s = s - tau_dt * r
+            s = s_new
             if n_changed <= POINT_CORRECTIONS:
                 kernel = kernel or _RollKernel(substrate, hf)
                 s = kernel.add(s, changed, correction)

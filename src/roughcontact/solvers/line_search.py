@@ -24,6 +24,8 @@ def line_minimum(
     work=None,
     elastic_slope=None,
     also=None,
+    speculate=None,
+    speculated=None,
 ):
     """Step ``alpha`` minimising E along ``w + alpha s`` (a root of the directional slope).
 
@@ -40,6 +42,10 @@ def line_minimum(
     it, called once the band and the curvature at alpha = 0 are done (the caller's ``K z``
     may still be running). ``also``: a list of the caller's device scalars to bring to
     the host in the line search's first transfer (replaced in place by Python floats).
+    ``speculate(alpha, pressure) -> (state, scalars)`` (device scalars only): the
+    caller's state after the first guess ``alpha``, whose scalars come over in the same
+    transfer; if the guess is taken, ``speculated`` (a dict) receives ``"state"`` and
+    ``"values"`` (the scalars as floats).
     """
     also = [] if also is None else also
     c0 = vdot(s, kw) if elastic_slope is None else elastic_slope
@@ -77,7 +83,12 @@ def line_minimum(
         p = interaction.pressure(ga + work.scalar(hi, ga) * sa)
         last.update(pressure=p, sites=sites)
         f_hi = c0 + hi * c1 - vdot(sa, p)
-        c0, c1, slope0, hi, f_hi, *also[:] = fetch(xp, [c0, c1, slope0, hi, f_hi, *also])
+        state, ahead = speculate(hi, p) if speculate is not None else (None, [])
+        k = len(also)
+        c0, c1, slope0, hi, f_hi, *rest = fetch(xp, [c0, c1, slope0, hi, f_hi, *also, *ahead])
+        also[:] = rest[:k]
+        if speculate is not None and abs(f_hi) <= rtol * abs(slope0):
+            speculated.update(state=state, values=rest[k:])
     else:
         also[:] = fetch(work.xp, also)
         hi = -slope0 / curv if curv > 0 else 1.0

@@ -282,7 +282,7 @@ def minimize_energy(
     p_near = interaction.pressure(gap if near is None else gap[near])
     gr = xp.empty_like(gap)
 
-    def imbalance():
+    def imbalance(kw, p_near, near):
         """gr = K w - p_int, without its mean when the uniform mode is rigid (its force
         is the load)."""
         m = (vtotal(kw) - vtotal(p_near)) / n if rigid else 0.0
@@ -293,7 +293,16 @@ def minimize_energy(
             g[near] -= p_near
         return g
 
-    gr = imbalance()
+    def speculate(alpha, p_near):
+        """Off NumPy: the state after the line search's first guess ``alpha`` (a device
+        scalar) with its pressure, and the residual's extremes, which then come to the
+        host in the line search's transfer: an accepted guess (the common case) costs
+        the iteration one host sync instead of two."""
+        gap_, kw_ = work.axpy(gap, alpha, s), work.axpy(kw, alpha, ks)
+        gr_ = imbalance(kw_, p_near, near)
+        return (gap_, kw_, gr_), [xp.max(gr_), xp.min(gr_)]
+
+    gr = imbalance(kw, p_near, near)
     exact = True  # kw is K w from a fresh float64 convolution (not updated incrementally)
     reliable = ReliableUpdates(tol)
     stiff = diagonal = None
@@ -304,10 +313,14 @@ def minimize_energy(
     gz_old = 1.0
     status, message = SolveStatus.ITERATION_LIMIT, "iteration cap reached"
     residual, it = math.inf, 0
+    extremes, guess = None, {}  # the residual's extremes fetched ahead; speculate's result
     stall = FloorGuard(StallGuard(dtype_name(h)), dtype_name(h), lambda: _largest(p_near), es, tol)
     while True:
         # the one host transfer of an iteration besides the line search's (a GPU waits here)
-        gr_max, gr_min = fetch(xp, [xp.max(gr), xp.min(gr)])
+        if extremes is None:
+            gr_max, gr_min = fetch(xp, [xp.max(gr), xp.min(gr)])
+        else:  # brought over with the line search's guess (speculate)
+            (gr_max, gr_min), extremes = extremes, None
         residual = max(gr_max, -gr_min) / es
         if not math.isfinite(residual):
             status = SolveStatus.NON_FINITE
@@ -316,7 +329,7 @@ def minimize_energy(
         if (update := reliable.check(residual, exact)) == "refresh":
             w = work.difference(gap, base)  # in the scratch array, consumed at once
             kw, exact = elastic_pressure(w, out=kw if work.inplace else None), True
-            gr = imbalance()
+            gr = imbalance(kw, p_near, near)
             continue
         if update == "restart":
             directions = False  # they were built on a drifted gradient
@@ -367,15 +380,20 @@ def minimize_energy(
             with_pressure=True,
             work=work,
             elastic_slope=elastic_slope,
+            speculate=None if work.inplace else speculate,
+            speculated=guess,
         )
         if not math.isfinite(alpha):
             status = SolveStatus.LINE_SEARCH_FAILED
             message = f"line search failed at iteration {it}"
             break
+        exact = False
+        if guess:  # the first guess was taken: its state and extremes are at hand
+            (gap, kw, gr), extremes = guess.pop("state"), guess.pop("values")
+            continue
         gap = work.axpy(gap, alpha, s)
         kw = work.axpy(kw, alpha, ks)
-        exact = False
-        gr = imbalance()
+        gr = imbalance(kw, p_near, near)
 
     if patch is not None:  # the patch of the work grid (no pressure on the padding)
         gap, base = gap[patch], base[patch]
