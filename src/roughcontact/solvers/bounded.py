@@ -218,25 +218,43 @@ def minimize_energy_bounded(
     stall = StallGuard(dtype_name(h))
     reliable, exact = ReliableUpdates(tol), True  # exact: kw is K w from a fresh convolution
     free = xp.ones(n, dtype=xp.bool, device=array_device(h))
-    while True:
+
+    def top(w, kw):
+        """The gap, the multiplier mu, the active face, the free sites and the free sites'
+        force imbalance ``rr`` of the state ``(w, K w)``."""
         gap = base + w
-        p_int = law(interaction.pressure, gap)
-        r = kw - p_int
+        r = kw - law(interaction.pressure, gap)
         on_wall = gap <= on_wall_tol
         if patch is not None:
             on_wall = on_wall & patch
+        mu = 0.0
         if rigid:
-            away = ~on_wall
-            mu = masked_mean(r, away, lambda r=r: vtotal(r) / n if dev else float(xp.mean(r)))
+            mean = (lambda: vtotal(r) / n) if dev else (lambda: float(xp.mean(r)))
+            mu = masked_mean(r, ~on_wall, mean)
         active = on_wall & (r - in_dt(mu) > 0)
         free = ~active
         if rigid:
-            mu = masked_mean(r, free, lambda m=mu: m)
-        rr = xp.where(free, r - in_dt(mu), 0.0)
-        if dev:
-            rr_max, n_free = fetch(xp, [xp.max(xp.abs(rr)), count(free)])
+            mu = masked_mean(r, free, lambda: mu)
+        return gap, mu, active, free, xp.where(free, r - in_dt(mu), 0.0)
+
+    def speculate(alpha, pressure):
+        """Off NumPy: the state after the line search's first guess, whose residual and
+        free-site count come over in the line search's transfer (one host sync for an
+        iteration that takes the guess, if it stays feasible)."""
+        w_, kw_ = w + in_dt(alpha) * s, kw + in_dt(alpha) * ks
+        state = top(w_, kw_)
+        return (w_, kw_, state), [xp.max(xp.abs(state[-1])), count(state[3])]
+
+    ahead, guess = None, {}  # the top's state fetched with the line search; speculate's
+    while True:
+        if ahead is None:
+            gap, mu, active, free, rr = top(w, kw)
+            if dev:
+                rr_max, n_free = fetch(xp, [xp.max(xp.abs(rr)), count(free)])
+            else:
+                rr_max, n_free = float(xp.max(xp.abs(rr))), None
         else:
-            rr_max, n_free = float(xp.max(xp.abs(rr))), None
+            ((gap, mu, active, free, rr), (rr_max, n_free)), ahead = ahead, None
         residual = rr_max / es
         if not math.isfinite(residual):
             status = SolveStatus.NON_FINITE
@@ -280,7 +298,8 @@ def minimize_energy_bounded(
             ratio = -gap / xp.where(crossing, s, -1.0)
             steps = [xp.min(xp.where(crossing, ratio, math.inf))]
         alpha = line_minimum(interaction, gap, s, kw, ks, slope0, work=work,
-                             also=steps if dev else None)  # fmt: skip
+                             also=steps if dev else None, speculate=speculate if dev else None,
+                             speculated=guess)  # fmt: skip
         if not math.isfinite(alpha):
             status = SolveStatus.LINE_SEARCH_FAILED
             message = f"line search failed at iteration {it}"
@@ -292,11 +311,16 @@ def minimize_energy_bounded(
                 float(xp.min(-gap[crossing] / s[crossing])) if xp.any(crossing) else math.inf
             )
         if alpha <= alpha_max:
-            w += alpha * s
-            kw += alpha * ks
+            if guess:  # the first guess, feasible: its state and scalars are at hand
+                (w, kw, state), values = guess.pop("state"), guess.pop("values")
+                ahead = (state, values)
+            else:
+                w += alpha * s
+                kw += alpha * ks
             e_cur = energy(w, kw)
             exact = False
             continue
+        guess.clear()
         # the step crosses the wall: project it, halve it while it does not lower E
         for _ in range(6):
             w_try = project_feasible(w + alpha * s, lower, rigid)
