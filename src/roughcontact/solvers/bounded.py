@@ -66,7 +66,7 @@ from .line_search import line_minimum
 from .loop_control import ReliableUpdates, StallGuard, stopping
 from .observables import make_result
 from .reductions import dot as _dot
-from .reductions import fetch, on_device, total, vdot, vtotal
+from .reductions import fetch, on_device, vdot, vtotal
 from .result import SolveStatus
 
 __all__ = ["minimize_energy_bounded", "project_feasible"]
@@ -82,19 +82,19 @@ def project_feasible(v, lower, zero_mean: bool):
     xp = array_namespace(v)
     if not zero_mean:
         return xp.maximum(v, lower)
-    lam = -float(xp.mean(v))
-    scale = total(xp.abs(lower)) + total(xp.abs(v)) + 1e-300
+    # the scalars of each step come to the host together (one transfer: a GPU waits once)
+    lam, lower_sum, v_sum = fetch(xp, [xp.mean(v), vtotal(xp.abs(lower)), vtotal(xp.abs(v))])
+    lam, scale = -lam, lower_sum + v_sum + 1e-300
     best, u_best = math.inf, None
     for _ in range(200):
         u = xp.maximum(v + lam, lower)
-        f = total(u)
+        free = v + lam > lower
+        f, count = fetch(xp, [vtotal(u), xp.astype(xp.count_nonzero(free), xp.float64)])
         if abs(f) >= best:  # no better at the precision of v (float32 stops here)
             return u_best
         if abs(f) <= 1e-13 * scale:
             break
         best, u_best = abs(f), u
-        free = v + lam > lower
-        count = int(xp.count_nonzero(free))
         if count == 0:  # everything clipped: move to the first breakpoint
             lam = float(xp.max(lower - v))
             continue
