@@ -9,6 +9,8 @@
 #   DEVICE=cpu SIZES="64 128" TASK_SIZE=128 SMALL=64 PATH_SIZE=128 CPU_SIZE=128 \
 #       benchmarks/gpu_check.sh                     # a dry run on the CPU
 #   PART=quick benchmarks/gpu_check.sh              # tests + float64 sizes only
+#   PART=second benchmarks/gpu_check.sh             # GPU side only: tests, float64 and
+#                                                   # float32 sizes, 4096² task and path
 set -u -o pipefail
 export PYTHONUNBUFFERED=1
 PY=${PY:-python3}
@@ -38,14 +40,27 @@ step() {  # step SECONDS TITLE COMMAND...: run with a limit, log the time it too
     fi
     $PY -c "import sys, numpy, scipy, array_api_compat, roughcontact; print(sys.version.split()[0], 'numpy', numpy.__version__, 'scipy', scipy.__version__, 'array_api_compat', array_api_compat.__version__, roughcontact.__file__)"
     [ "$DEVICE" != cpu ] && $PY -c "import cupy; print('cupy', cupy.__version__)"
-    step 90 "GPU tests" $PY -m pytest -q -p no:cacheprovider -x \
+    step 90 "GPU tests" $PY -m pytest -q -p no:cacheprovider \
         tests/backends/test_cupy.py tests/backends/test_device_detection.py
     cpu=(--cpu-sizes)
-    [ -n "$CPU_SIZE" ] && cpu=(--cpu-sizes "$CPU_SIZE" --cpu-repeats 1)
+    [ -n "$CPU_SIZE" ] && [ "$PART" = all ] && cpu=(--cpu-sizes "$CPU_SIZE" --cpu-repeats 1)
     # shellcheck disable=SC2086
     step 150 "gpu.py float64" $PY benchmarks/gpu.py --device "$DEVICE" --sizes $SIZES \
         "${cpu[@]}" --path-size 0 --repeats 3 --json "$OUTDIR/gpu64.json"
     [ "$PART" = quick ] && exit 0
+    if [ "$PART" = second ]; then  # a later, shorter run: the GPU side only
+        step 100 "paper task ${TASK_SIZE}² on $DEVICE" $PY benchmarks/gpu_task.py \
+            --device "$DEVICE" --size "$TASK_SIZE" --json "$OUTDIR/task.json"
+        step 90 "41-state path ${PATH_SIZE}²" $PY benchmarks/gpu.py --device "$DEVICE" \
+            --sizes --cpu-sizes --path-size "$PATH_SIZE" --json "$OUTDIR/path.json"
+        # shellcheck disable=SC2086
+        step 40 "gpu.py float32" $PY benchmarks/gpu.py --device "$DEVICE" --sizes $SIZES \
+            --cpu-sizes --path-size 0 --repeats 2 --dtype float32 --json "$OUTDIR/gpu32.json"
+        step 30 "task ${SMALL}² on $DEVICE" $PY benchmarks/gpu_task.py --device "$DEVICE" \
+            --size "$SMALL" --json "$OUTDIR/task_small.json"
+        echo "=== done $(date -u)"
+        exit 0
+    fi
     step 120 "paper task ${TASK_SIZE}² on $DEVICE" $PY benchmarks/gpu_task.py \
         --device "$DEVICE" --size "$TASK_SIZE" --json "$OUTDIR/task.json"
     # shellcheck disable=SC2086
