@@ -32,10 +32,12 @@ from typing import ClassVar
 
 import numpy as np
 
-from .._backend import is_numpy_array
+from .._backend import is_cupy_array, is_numpy_array
 from .._validate import ParameterError, positive
 from ._base import as_gap
+from ._fused import kernel
 from ._lj93 import (
+    CORE_FRACTION,
     SIGMA_OVER_A0,
     curvature_at_minimum,
     lj93_derivative,
@@ -177,6 +179,8 @@ class SmoothLJ93:
         # the solvers' hot path: the quartic on every site (zero from the cutoff on,
         # where 1 - x is clipped to 0), then the 9-3 core only where g < a0
         xp, g = as_gap(gap)
+        if is_cupy_array(g) and (fused := kernel("pressure")) is not None:
+            return fused(g, *self._kernel_args(-12.0 * self.work_of_adhesion / self.range))
         m = self._remaining_range(xp, g)
         p = 1.0 - m  # x
         p *= m
@@ -187,11 +191,22 @@ class SmoothLJ93:
     def curvature(self, gap):
         """V''(g) (pressure / length)."""
         xp, g = as_gap(gap)
+        if is_cupy_array(g) and (fused := kernel("curvature")) is not None:
+            scale = 12.0 * self.work_of_adhesion / self.range**2
+            return fused(g, *self._kernel_args(scale))
         m = self._remaining_range(xp, g)
         d2v = 3.0 * m - 2.0  # 1 - 3x
         d2v *= m
         d2v *= 12.0 * self.work_of_adhesion / self.range**2
         return self._core(xp, g, d2v, 2, sign=1.0)
+
+    def _kernel_args(self, scale):
+        """The scalars of the fused CuPy kernels (:mod:`._fused`), after the gap."""
+        a0 = self.equilibrium_distance
+        return (
+            self.cutoff, 1.0 / self.range, scale, a0, CORE_FRACTION * a0, self.sigma,
+            self.epsilon, -(18.0 / 15.0), 180.0 / 15.0, 12.0, 3.0, 2.0,
+        )  # fmt: skip
 
     def _remaining_range(self, xp, g):
         """1 - x = (a0 + Δr - g)/Δr clipped to [0, 1] (a new array).
