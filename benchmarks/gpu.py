@@ -27,9 +27,9 @@ CPU (NumPy, scipy.fft on all cores) for the GPU/CPU ratio; ``--cpu-path`` also t
     python benchmarks/gpu.py --dtype float32 --json gpu32.json
 
 Surface generation and the hard-wall solve that fixes the offsets are never timed; each
-timed solve follows an untimed warm-up of :data:`WARMUP_ITER` iterations of the same
-solve, at the same size and dtype (CUDA context, cuFFT plans of every grid the solve
-uses, kernel compilation), so ``--repeats 1`` times a warm solve. BLAS and OpenMP pools
+timed solve follows an untimed warm-up run of the same solve, at the same size and dtype
+(CUDA context, cuFFT plans of every grid the solve uses, kernel compilation; on the CPU
+:data:`WARMUP_ITER` iterations of it), so ``--repeats 1`` times a warm solve. BLAS and OpenMP pools
 run on their libraries' defaults unless ``--blas-threads N`` is given, which is then
 enforced and verified (``_threads.py``); the header and the JSON (``meta.threads``)
 record the threads per library, CPUs and versions.
@@ -55,7 +55,8 @@ from hardwall import machine_meta, surface
 import roughcontact as rc
 
 A0 = ES = 1.0
-#: iterations of the untimed warm-up solve before each timed one
+#: iterations of the untimed warm-up solve before each timed one on the CPU (no kernels
+#: to compile there; a GPU warms up with the whole solve)
 WARMUP_ITER = 5
 
 
@@ -134,7 +135,10 @@ def bench_size(n: int, args, device: str) -> dict:
     ):
         # untimed warm-up at the measured size and dtype (a few iterations of the same
         # solve, its nested coarse grids included): kernel compilation and FFT plans
-        rc.solve(h_dev, sub, lw, device=device, dtype=args.dtype, max_iter=WARMUP_ITER, **control)
+        # (on a GPU the whole solve: a few iterations may not reach every kernel, e.g. a
+        # projection's point corrections, whose first use compiles them)
+        warmup = {} if device != "cpu" else {"max_iter": WARMUP_ITER}
+        rc.solve(h_dev, sub, lw, device=device, dtype=args.dtype, **warmup, **control)
         repeats = args.cpu_repeats if device == "cpu" else args.repeats
         runs = [timed_solve(h_dev, sub, lw, device, args.dtype, **control) for _ in range(repeats)]
         r = dict(runs[0])

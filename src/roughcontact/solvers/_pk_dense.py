@@ -169,6 +169,7 @@ def iterate_dense(p, pb, substrate):
         else:
             beta = g_z / g_old
             t = z + in_dt(beta if delta is True else xp.where(delta, beta, zero64)) * t
+        del z  # (peak device memory: fields are dropped as soon as they are spent)
         if load:  # keep the load fixed along the search direction
             t = xp.where(c, t - in_dt(total(t) / n_c), zero)
         g_old = g_z
@@ -180,6 +181,7 @@ def iterate_dense(p, pb, substrate):
         clipped = c & (p_new <= zero)
         changed = clipped | out  # where a projection makes p differ from p_new
         s_new = s - tau_dt * r  # exact by linearity: G(p - tau t) - h
+        del r
         # the next top's quantities if no site changes (the common case), fetched with
         # the step: one host sync for such an iteration
         *following, scalars = top(s_new, c, n_c)
