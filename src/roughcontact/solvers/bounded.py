@@ -66,7 +66,7 @@ from .line_search import line_minimum
 from .loop_control import ReliableUpdates, StallGuard, stopping
 from .observables import make_result
 from .reductions import dot as _dot
-from .reductions import fetch, on_device, vdot, vtotal
+from .reductions import fetch, on_device, total, vdot, vtotal
 from .result import SolveStatus
 
 __all__ = ["minimize_energy_bounded", "project_feasible"]
@@ -86,15 +86,22 @@ def project_feasible(v, lower, zero_mean: bool):
     lam, lower_sum, v_sum = fetch(xp, [xp.mean(v), vtotal(xp.abs(lower)), vtotal(xp.abs(v))])
     lam, scale = -lam, lower_sum + v_sum + 1e-300
     best, u_best = math.inf, None
+    numpy = is_numpy_array(v)
     for _ in range(200):
         u = xp.maximum(v + lam, lower)
-        free = v + lam > lower
-        f, count = fetch(xp, [vtotal(u), xp.astype(xp.count_nonzero(free), xp.float64)])
+        if numpy:
+            f = total(u)
+        else:  # the count with the sum, in one transfer
+            free = v + lam > lower
+            f, count = fetch(xp, [vtotal(u), xp.astype(xp.count_nonzero(free), xp.float64)])
         if abs(f) >= best:  # no better at the precision of v (float32 stops here)
             return u_best
         if abs(f) <= 1e-13 * scale:
             break
         best, u_best = abs(f), u
+        if numpy:
+            free = v + lam > lower
+            count = int(xp.count_nonzero(free))
         if count == 0:  # everything clipped: move to the first breakpoint
             lam = float(xp.max(lower - v))
             continue
