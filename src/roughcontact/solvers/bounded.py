@@ -31,6 +31,11 @@ updates ``K w`` by increments, which is recomputed exactly in float64 as the res
 falls and before convergence is declared, as in :mod:`.smooth`), and a float64 one on
 projected steps (their energy test needs the exact ``K w``).
 
+Off NumPy (a GPU) the scalars (``μ``, inner products, ``beta``) stay 0-d device arrays;
+the host reads them in one transfer at the line search's first guess, with the largest
+feasible step and the residual of the state that guess gives (one host sync for an
+iteration that takes it), and the projection's Newton steps read theirs one transfer each.
+
 The result's ``pressure`` is the surface traction: the interaction pressure on free
 sites, the elastic pressure (reaction plus adhesion) on the wall. Repulsive sites are
 those where it is > 0 (only wall sites), attractive those where it is < 0.

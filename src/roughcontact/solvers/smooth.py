@@ -63,6 +63,13 @@ preconditioner's mean comes from sums it already needs, the line search's elasti
 every full-grid update writes into arrays allocated once per solve (:mod:`._inplace`):
 1.3-1.5x less time per iteration than the same steps with a temporary per expression.
 
+Off NumPy (a GPU) the loop's scalars (inner products, ``beta``, the slope, the rigid mean)
+stay 0-d device arrays and the host reads them in one transfer where it branches: the line
+search's first guess and its slope, with the residual's extremes of the state that guess
+gives (computed before the transfer), so an iteration whose guess is taken makes one host
+sync, else two or three. The interaction is evaluated on every site (a mask, not a gather:
+CuPy's boolean indexing syncs), the 9-3 wall as one fused kernel on CuPy.
+
 Convergence measure (``residual``): the largest force imbalance per unit area,
 ``max |K w - p_int(g)|`` (excluding the uniform mode when it is rigid), divided by the
 contact modulus. Everything else in the conventions of the README ('The model').
