@@ -27,10 +27,12 @@ CPU (NumPy, scipy.fft on all cores) for the GPU/CPU ratio; ``--cpu-path`` also t
     python benchmarks/gpu.py --dtype float32 --json gpu32.json
 
 Surface generation and the hard-wall solve that fixes the offsets are never timed; each
-size starts with an untimed warm-up solve on the device (CUDA context, cuFFT plans,
-kernel compilation). BLAS and OpenMP pools run on their libraries' defaults unless
-``--blas-threads N`` is given, which is then enforced and verified (``_threads.py``); the
-header and the JSON (``meta.threads``) record the threads per library, CPUs and versions.
+timed solve follows an untimed warm-up run of the same solve, at the same size and dtype
+(CUDA context, cuFFT plans of every grid the solve uses, kernel compilation; on the CPU
+:data:`WARMUP_ITER` iterations of it), so ``--repeats 1`` times a warm solve. BLAS and OpenMP pools
+run on their libraries' defaults unless ``--blas-threads N`` is given, which is then
+enforced and verified (``_threads.py``); the header and the JSON (``meta.threads``)
+record the threads per library, CPUs and versions.
 """
 
 from __future__ import annotations
@@ -53,6 +55,9 @@ from hardwall import machine_meta, surface
 import roughcontact as rc
 
 A0 = ES = 1.0
+#: iterations of the untimed warm-up solve before each timed one on the CPU (no kernels
+#: to compile there; a GPU warms up with the whole solve)
+WARMUP_ITER = 5
 
 
 def _xp(device: str):
@@ -118,9 +123,9 @@ def bench_size(n: int, args, device: str) -> dict:
     h = surface(n, args.seed)
     sub = rc.Substrate((n, n), contact_modulus=ES, pixel_size=A0)
     law = rc.SmoothLJ93.from_adhesion_length(args.adhesion_length)
-    d_hw = rc.solve(h, sub, rc.HardWall(), load=args.end_load).offset  # untimed, CPU
+    # untimed, on the device (on a 16-core CPU it took longer than the timed GPU solves)
+    d_hw = rc.solve(h, sub, rc.HardWall(), load=args.end_load, device=device).offset
     h_dev = rc.to_device(h, device, args.dtype)
-    rc.solve(h_dev[:64, :64], rc.Substrate((64, 64)), rc.HardWall(), load=args.load)  # warm-up
     row = {"n": n, "device": device, "dtype": args.dtype}
     row["fft_seconds"] = fft_pair_seconds(n, device, args.dtype)
     grid_bytes = n * n * 8
@@ -128,11 +133,14 @@ def bench_size(n: int, args, device: str) -> dict:
         ("hardwall", rc.HardWall(), {"load": args.load}),
         ("adhesive", law, {"offset": d_hw + A0}),
     ):
-        runs = [timed_solve(h_dev, sub, lw, device, args.dtype, **control)]
-        runs += [
-            timed_solve(h_dev, sub, lw, device, args.dtype, **control)
-            for _ in range(args.repeats - 1)
-        ]
+        # untimed warm-up at the measured size and dtype (a few iterations of the same
+        # solve, its nested coarse grids included): kernel compilation and FFT plans
+        # (on a GPU the whole solve: a few iterations may not reach every kernel, e.g. a
+        # projection's point corrections, whose first use compiles them)
+        warmup = {} if device != "cpu" else {"max_iter": WARMUP_ITER}
+        rc.solve(h_dev, sub, lw, device=device, dtype=args.dtype, **warmup, **control)
+        repeats = args.cpu_repeats if device == "cpu" else args.repeats
+        runs = [timed_solve(h_dev, sub, lw, device, args.dtype, **control) for _ in range(repeats)]
         r = dict(runs[0])
         r["seconds"] = float(np.median([x["seconds"] for x in runs]))
         r["ms_per_iteration"] = 1e3 * r["seconds"] / max(r["iterations"], 1)
@@ -146,7 +154,7 @@ def bench_path(n: int, args, device: str) -> dict:
     h = surface(n, args.seed)
     sub = rc.Substrate((n, n), contact_modulus=ES, pixel_size=A0)
     law = rc.SmoothLJ93.from_adhesion_length(args.adhesion_length)
-    d_hw = rc.solve(h, sub, rc.HardWall(), load=args.end_load).offset  # untimed
+    d_hw = rc.solve(h, sub, rc.HardWall(), load=args.end_load, device=device).offset  # untimed
     d_start, d_end = float(h.max()) + A0, d_hw + A0
     half = args.path_steps // 2
     offsets = d_start - (d_start - d_end) * np.arange(0, half + 1) / half  # 2 half + 1 states
@@ -184,7 +192,7 @@ def fmt(row: dict) -> list[str]:
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--sizes", type=int, nargs="+", default=[1024, 2048, 4096, 8192])
+    ap.add_argument("--sizes", type=int, nargs="*", default=[1024, 2048, 4096, 8192])
     ap.add_argument("--device", default="cuda")
     ap.add_argument("--dtype", choices=["float64", "float32"], default="float64")
     ap.add_argument("--cpu-sizes", type=int, nargs="*", default=[1024, 2048])
@@ -195,6 +203,7 @@ def main(argv=None) -> int:
     ap.add_argument("--end-load", type=float, default=5e-4, help="sets the deepest offset")
     ap.add_argument("--adhesion-length", type=float, default=0.005, help="ℓa / a0")
     ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument("--cpu-repeats", type=int, default=3, help="repeats of the CPU solves")
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument(
         "--blas-threads",

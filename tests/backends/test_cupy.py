@@ -79,3 +79,20 @@ def test_gpu_path_and_float32():
     np.testing.assert_allclose(got["load"], ref["load"], rtol=1e-8, atol=1e-12)
     single = rc.approach_retract(H, SUB, law, offsets=offsets, device="cuda", dtype="float32")
     np.testing.assert_allclose(single["load"], ref["load"], rtol=1e-4, atol=1e-6)
+
+
+@pytest.mark.parametrize("dtype", ["float64", "float32"])
+def test_fused_law_kernels_equal_the_numpy_law(dtype):
+    # the smoothed 9-3 wall's one-pass CuPy kernels (interactions/_fused.py): built, and
+    # the NumPy values, the 9-3 core and its quadratic continuation included
+    from roughcontact.interactions._fused import kernel
+
+    assert kernel("pressure") is not None and kernel("curvature") is not None
+    law = rc.SmoothLJ93.from_adhesion_length(0.005)
+    g = np.concatenate([np.linspace(-0.5, 2.0, 4001), [0.0, 0.05, law.cutoff]]).astype(dtype)
+    for method in ("pressure", "curvature"):
+        got = getattr(law, method)(cupy.asarray(g))
+        assert isinstance(got, cupy.ndarray) and got.dtype == g.dtype
+        # bit for bit where NVRTC honours --fmad=false; a contracted build rounds differently
+        rtol = 1e-12 if dtype == "float64" else 1e-6
+        np.testing.assert_allclose(got.get(), getattr(law, method)(g), rtol=rtol, atol=0)

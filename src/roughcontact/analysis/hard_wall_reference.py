@@ -120,6 +120,7 @@ def hard_wall_reference(
     load: float | None = None,
     tol: float = 1e-8,
     max_solves: int = 16,
+    device: str | None = None,
 ) -> HardWallReference:
     r"""κ_rep of the non-adhesive hard wall on ``heights`` at ``target_area``.
 
@@ -141,6 +142,9 @@ def hard_wall_reference(
         Tolerance of each hard-wall solve (largest Signorini violation / h_rms).
     max_solves : int
         Cap on the number of solves of the bracketing search.
+    device : {None, "cpu", "cuda", "cuda:N"}, optional
+        Where the solves compute (default: where ``heights`` live); the heights are
+        moved there once and every warm start stays there.
 
     Returns
     -------
@@ -148,6 +152,7 @@ def hard_wall_reference(
         ``kappa_rep`` is NaN, and ``converged`` False, if the search did not bracket
         the target within ``max_solves`` solves.
     """
+    from .._backend import to_device
     from ..interactions import HardWall
     from ..solvers import solve
     from ..surfaces.statistics import statistics
@@ -158,11 +163,12 @@ def hard_wall_reference(
     slope = slope if rms_slope is None else positive("rms_slope", rms_slope)
     modulus = substrate.contact_modulus
     states, converged = [], True
+    h = heights if device is None else to_device(heights, device)
 
     def run(n):
         nonlocal converged
         nearest = min(states, key=lambda s: abs(s.load - n)) if states else None
-        res = solve(heights, substrate, HardWall(), load=n, initial=nearest, tol=tol)
+        res = solve(h, substrate, HardWall(), load=n, initial=nearest, tol=tol)
         converged &= bool(res.converged)
         states.append(res)
 

@@ -262,6 +262,7 @@ def analyze_path(
     hard_wall_reference: bool = True,
     heights=None,
     substrate=None,
+    device: str | None = None,
 ) -> PathAnalysis:
     """Analyse a load path at ``target_area`` (the paper's 1 % of A0).
 
@@ -285,6 +286,9 @@ def analyze_path(
         The path's surface (length), if the dataset does not hold it.
     substrate : Substrate, optional
         The path's substrate; default: rebuilt from the dataset's attributes.
+    device : {None, "cpu", "cuda", "cuda:N"}, optional
+        Where the hard-wall reference's solves compute (default: where ``heights``
+        live); a study task passes its own device.
 
     Raises
     ------
@@ -345,7 +349,7 @@ def analyze_path(
     d_rep = _ratio(math.pi * target, at["perimeter"])
     theory = _theory(a, kappa_rep, d_rep, w / modulus, dr)
     reference = (
-        _reference(ds, heights, substrate, target, at, kappa_rep, d_rep)
+        _reference(ds, heights, substrate, target, at, kappa_rep, d_rep, device)
         if hard_wall_reference
         else {"warnings": []}
     )
@@ -423,7 +427,7 @@ def _substrate_from_attrs(attrs):
     )
 
 
-def _reference(ds, heights, substrate, target, at, kappa_rep, d_rep) -> dict:
+def _reference(ds, heights, substrate, target, at, kappa_rep, d_rep, device=None) -> dict:
     """The hard-wall reference's fields of :class:`PathAnalysis` (and its warnings)."""
     if heights is None and "heights" in ds.variables:
         heights = np.asarray(ds["heights"].values, dtype=float)
@@ -441,6 +445,7 @@ def _reference(ds, heights, substrate, target, at, kappa_rep, d_rep) -> dict:
         target_area=target,
         rms_slope=float(ds.attrs["rms_slope"]),
         load=at["repulsive_load"],
+        device=device,
     )
     delta = band_width(target, ref.area_at_load, at["perimeter"])
     out = {

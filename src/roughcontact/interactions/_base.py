@@ -26,7 +26,7 @@ from typing import ClassVar, Protocol, runtime_checkable
 
 import numpy as np
 
-from .._backend import array_namespace
+from .._backend import array_namespace, is_array
 
 __all__ = ["GapLaw", "Interaction"]
 
@@ -146,7 +146,7 @@ def as_gap(gap):
     float32 gaps stay float32 (the solvers' single-precision option); anything else
     becomes float64.
     """
-    if not hasattr(gap, "__array_namespace__"):
+    if not is_array(gap):  # lists, Python scalars: float64 NumPy
         gap = np.asarray(gap, dtype=float)
     xp = array_namespace(gap)
     if gap.dtype in (xp.float64, xp.float32):

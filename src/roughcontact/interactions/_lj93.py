@@ -56,12 +56,13 @@ def lj93_with_core(g, epsilon: float, sigma: float, a0: float):
     return v + dv * below + 0.5 * d2v * below**2, dv + d2v * below, d2v
 
 
-def lj93_derivative(g, epsilon: float, sigma: float, a0: float, order: int):
+def lj93_derivative(g, epsilon: float, sigma: float, a0: float, order: int, branch: bool = True):
     """V_LJ' (``order=1``) or V_LJ'' (``order=2``) of :func:`lj93_with_core`, only that one.
 
     The solvers' hot path (the pressure or the curvature on the sites in the core):
     :func:`lj93_with_core` computes all three terms. The quadratic continuation below
-    ``CORE_FRACTION * a0`` has V'' constant and V' linear there.
+    ``CORE_FRACTION * a0`` has V'' constant and V' linear there. ``branch=False`` adds
+    the continuation's term without testing whether any gap needs it.
     """
     xp = array_namespace(g)
     g_min = CORE_FRACTION * a0
@@ -70,6 +71,8 @@ def lj93_derivative(g, epsilon: float, sigma: float, a0: float, order: int):
     if order == 2:
         return _second(epsilon, *powers)
     dv = _first(epsilon, *powers)
-    if bool(xp.any(g < g_min)):  # rare: a solver's trial step deep into the core
+    # rare: a solver's trial step deep into the core; without ``branch`` (a GPU: the test
+    # would wait for the device) always, exactly dv where g >= g_min (g - gc = 0 there)
+    if not branch or bool(xp.any(g < g_min)):
         dv = dv + _second(epsilon, *powers) * (g - gc)
     return dv

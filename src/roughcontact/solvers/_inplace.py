@@ -65,17 +65,25 @@ class Workspace:
     def interacting(self, gap, cutoff: float):
         """Sites where a law of range ``cutoff`` acts at ``gap``: on the patch, with
         ``gap < cutoff`` (None: every site, for an unbounded law without a patch)."""
-        if not math.isfinite(cutoff):
+        if not math.isfinite(cutoff) or not self.inplace:
+            # elsewhere (a GPU) every site of the patch: a law vanishes exactly beyond its
+            # cutoff, and a subset would cost a boolean gather (on CuPy a host sync)
             return self.patch
         return self.on_patch(self.sites(gap < cutoff))
 
+    def scalar(self, a, like):
+        """A scalar (Python float, or a 0-d array of this backend) in ``like``'s dtype, as
+        a Python float is used with an array (a float64 0-d array would promote it)."""
+        if isinstance(a, float) or a.dtype == like.dtype:
+            return a
+        return self.xp.astype(a, like.dtype)
+
     def axpy(self, y, a: float, x):
-        """``y += a * x`` in place; returns ``y``."""
+        """``y += a * x`` in place (``y = y + a * x`` off NumPy); returns ``y``."""
         if self.inplace:
             y += np.multiply(x, a, out=self.tmp)
-        else:
-            y += a * x
-        return y
+            return y
+        return y + self.scalar(a, y) * x
 
     def difference(self, x, y):
         """``x - y``, on NumPy in the scratch array (valid until the next helper call)."""
@@ -83,6 +91,8 @@ class Workspace:
 
     def scale_sub(self, y, beta: float, x):
         """``y = beta * y - x`` in place (``x`` may be of lower precision); returns ``y``."""
+        if not self.inplace:
+            return self.scalar(beta, y) * y - x
         y *= beta
         y -= x
         return y
@@ -105,12 +115,15 @@ class Workspace:
         """``x - shift`` in ``out``'s dtype, computed in that dtype (into ``out`` on NumPy)."""
         if self.inplace:
             return np.subtract(x, shift, out=out, dtype=out.dtype)
-        return self.xp.astype(x, out.dtype) - shift
+        x = x if x.dtype == out.dtype else self.xp.astype(x, out.dtype)
+        return x - self.scalar(shift, out)
 
     def band(self, gap, s, reach: float, cutoff: float):
         """Sites where ``min(gap, gap + reach s) < cutoff``: all that can feel a law
         of range ``cutoff`` along ``gap + alpha s`` for ``0 <= alpha <= reach`` (on the
         patch)."""
+        if not self.inplace:  # every site of the patch (see interacting)
+            return self.patch
         if self.patch_mask is not None:
             return self.on_patch(self._band(gap, s, reach, cutoff))
         return self._band(gap, s, reach, cutoff)

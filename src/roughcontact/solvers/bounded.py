@@ -31,6 +31,11 @@ updates ``K w`` by increments, which is recomputed exactly in float64 as the res
 falls and before convergence is declared, as in :mod:`.smooth`), and a float64 one on
 projected steps (their energy test needs the exact ``K w``).
 
+Off NumPy (a GPU) the scalars (``μ``, inner products, ``beta``) stay 0-d device arrays;
+the host reads them in one transfer at the line search's first guess, with the largest
+feasible step and the residual of the state that guess gives (one host sync for an
+iteration that takes it), and the projection's Newton steps read theirs one transfer each.
+
 The result's ``pressure`` is the surface traction: the interaction pressure on free
 sites, the elastic pressure (reaction plus adhesion) on the wall. Repulsive sites are
 those where it is > 0 (only wall sites), attractive those where it is < 0.
@@ -51,6 +56,7 @@ from .._backend import (
     array_namespace,
     computes_on_heights_device,
     dtype_name,
+    is_numpy_array,
 )
 from ._inplace import Workspace
 from .fourier import (
@@ -65,7 +71,7 @@ from .line_search import line_minimum
 from .loop_control import ReliableUpdates, StallGuard, stopping
 from .observables import make_result
 from .reductions import dot as _dot
-from .reductions import total
+from .reductions import fetch, on_device, total, vdot, vtotal
 from .result import SolveStatus
 
 __all__ = ["minimize_energy_bounded", "project_feasible"]
@@ -81,19 +87,26 @@ def project_feasible(v, lower, zero_mean: bool):
     xp = array_namespace(v)
     if not zero_mean:
         return xp.maximum(v, lower)
-    lam = -float(xp.mean(v))
-    scale = total(xp.abs(lower)) + total(xp.abs(v)) + 1e-300
+    # the scalars of each step come to the host together (one transfer: a GPU waits once)
+    lam, lower_sum, v_sum = fetch(xp, [xp.mean(v), vtotal(xp.abs(lower)), vtotal(xp.abs(v))])
+    lam, scale = -lam, lower_sum + v_sum + 1e-300
     best, u_best = math.inf, None
+    numpy = is_numpy_array(v)
     for _ in range(200):
         u = xp.maximum(v + lam, lower)
-        f = total(u)
+        if numpy:
+            f = total(u)
+        else:  # the count with the sum, in one transfer
+            free = v + lam > lower
+            f, count = fetch(xp, [vtotal(u), xp.astype(xp.count_nonzero(free), xp.float64)])
         if abs(f) >= best:  # no better at the precision of v (float32 stops here)
             return u_best
         if abs(f) <= 1e-13 * scale:
             break
         best, u_best = abs(f), u
-        free = v + lam > lower
-        count = int(xp.count_nonzero(free))
+        if numpy:
+            free = v + lam > lower
+            count = int(xp.count_nonzero(free))
         if count == 0:  # everything clipped: move to the first breakpoint
             lam = float(xp.max(lower - v))
             continue
@@ -187,8 +200,27 @@ def minimize_energy_bounded(
     w = project_feasible(w0 - xp.mean(w0) if rigid else w0, lower, rigid)
     kw = stiff(w)
 
-    def energy(w_, kw_):
-        return 0.5 * _dot(w_, kw_) + total(interaction.energy(on_patch(base + w_)))
+    def energy(w_, kw_):  # a device scalar off NumPy
+        return 0.5 * vdot(w_, kw_) + vtotal(interaction.energy(on_patch(base + w_)))
+
+    # off NumPy (a GPU) the loop's scalars stay 0-d device arrays and the host reads them
+    # in two transfers per iteration: the residual at the top, and the line search's first
+    # slope with the largest feasible step (each transfer waits for the device)
+    dev, f64 = not is_numpy_array(h), xp.float64
+
+    def in_dt(x):  # a float64 device scalar in the fields' precision (as a Python float)
+        return xp.astype(x, h.dtype) if on_device(x) and x.dtype != h.dtype else x
+
+    def count(mask):
+        return xp.sum(xp.astype(mask, f64))
+
+    def masked_mean(x, mask, fallback):
+        """mean of x over mask, else fallback(): a float on NumPy, off it a device scalar"""
+        if not dev:
+            return float(xp.mean(x[mask])) if xp.any(mask) else fallback()
+        k = count(mask)
+        mean = xp.sum(xp.where(mask, x, 0.0), dtype=f64) / xp.maximum(k, 1.0)
+        return xp.where(k > 0.0, mean, fallback())
 
     e_cur = energy(w, kw)
     s = ks = z_old = None
@@ -198,22 +230,44 @@ def minimize_energy_bounded(
     stall = StallGuard(dtype_name(h))
     reliable, exact = ReliableUpdates(tol), True  # exact: kw is K w from a fresh convolution
     free = xp.ones(n, dtype=xp.bool, device=array_device(h))
-    while True:
+
+    def top(w, kw):
+        """The gap, the multiplier mu, the active face, the free sites and the free sites'
+        force imbalance ``rr`` of the state ``(w, K w)``."""
         gap = base + w
-        p_int = law(interaction.pressure, gap)
-        r = kw - p_int
+        r = kw - law(interaction.pressure, gap)
         on_wall = gap <= on_wall_tol
         if patch is not None:
             on_wall = on_wall & patch
+        mu = 0.0
         if rigid:
-            away = ~on_wall
-            mu = float(xp.mean(r[away])) if xp.any(away) else float(xp.mean(r))
-        active = on_wall & (r - mu > 0)
+            mean = (lambda: vtotal(r) / n) if dev else (lambda: float(xp.mean(r)))
+            mu = masked_mean(r, ~on_wall, mean)
+        active = on_wall & (r - in_dt(mu) > 0)
         free = ~active
         if rigid:
-            mu = float(xp.mean(r[free])) if xp.any(free) else mu
-        rr = xp.where(free, r - mu, 0.0)
-        residual = float(xp.max(xp.abs(rr))) / es
+            mu = masked_mean(r, free, lambda: mu)
+        return gap, mu, active, free, xp.where(free, r - in_dt(mu), 0.0)
+
+    def speculate(alpha, pressure):
+        """Off NumPy: the state after the line search's first guess, whose residual and
+        free-site count come over in the line search's transfer (one host sync for an
+        iteration that takes the guess, if it stays feasible)."""
+        w_, kw_ = w + in_dt(alpha) * s, kw + in_dt(alpha) * ks
+        state = top(w_, kw_)
+        return (w_, kw_, state), [xp.max(xp.abs(state[-1])), count(state[3])]
+
+    ahead, guess = None, {}  # the top's state fetched with the line search; speculate's
+    while True:
+        if ahead is None:
+            gap, mu, active, free, rr = top(w, kw)
+            if dev:
+                rr_max, n_free = fetch(xp, [xp.max(xp.abs(rr)), count(free)])
+            else:
+                rr_max, n_free = float(xp.max(xp.abs(rr))), None
+        else:
+            ((gap, mu, active, free, rr), (rr_max, n_free)), ahead = ahead, None
+        residual = rr_max / es
         if not math.isfinite(residual):
             status = SolveStatus.NON_FINITE
             message = f"non-finite state at iteration {it} (check inputs and the interaction)"
@@ -224,7 +278,7 @@ def minimize_energy_bounded(
             continue
         if update == "restart":
             s = None  # the conjugate directions were built on a drifted gradient
-        done = residual <= tol or not bool(xp.any(free))
+        done = residual <= tol or not (n_free > 0 if dev else bool(xp.any(free)))
         if (end := stopping(done, residual, stall, it, max_iter)) is not None:
             status, message = end
             break
@@ -235,41 +289,56 @@ def minimize_energy_bounded(
         reliable.step()
         z = xp.where(free, green(rr), 0.0)
         if rigid:
-            z = xp.where(free, z - xp.mean(z[free]), 0.0)
-        gz = _dot(rr, z)
-        restart = (
-            s is None
-            or it % restart_every == 0
-            or active_old is None
-            or bool(xp.any(active != active_old))
-        )
-        restart = restart or gz_old == 0  # no previous direction to conjugate to
-        beta = 0.0 if restart else max(0.0, (gz - _dot(rr, z_old)) / gz_old)  # PR+
-        s = -z + beta * s if beta > 0 else -z
-        slope0 = _dot(rr, s)
-        if slope0 >= 0:
-            s, slope0 = -z, -gz
+            z = xp.where(free, z - in_dt(masked_mean(z, free, lambda: 0.0)), 0.0)
+        restart = s is None or it % restart_every == 0 or active_old is None
+        if dev:
+            s, slope0, gz = _direction_on_device(xp, rr, z, z_old, s, gz_old, restart,
+                                                 active, active_old)  # fmt: skip
+        else:
+            gz = _dot(rr, z)
+            restart = restart or bool(xp.any(active != active_old))
+            restart = restart or gz_old == 0  # no previous direction to conjugate to
+            beta = 0.0 if restart else max(0.0, (gz - _dot(rr, z_old)) / gz_old)  # PR+
+            s = -z + beta * s if beta > 0 else -z
+            slope0 = _dot(rr, s)
+            if slope0 >= 0:
+                s, slope0 = -z, -gz
         z_old, gz_old, active_old = z, gz, active
         ks = stiff_single(s)
-        alpha = line_minimum(interaction, gap, s, kw, ks, slope0, work=work)
+        crossing = s < 0 if patch is None else (s < 0) & patch
+        if dev:  # the largest feasible step, brought over with the line search's slope
+            ratio = -gap / xp.where(crossing, s, -1.0)
+            steps = [xp.min(xp.where(crossing, ratio, math.inf))]
+        alpha = line_minimum(interaction, gap, s, kw, ks, slope0, work=work,
+                             also=steps if dev else None, speculate=speculate if dev else None,
+                             speculated=guess)  # fmt: skip
         if not math.isfinite(alpha):
             status = SolveStatus.LINE_SEARCH_FAILED
             message = f"line search failed at iteration {it}"
             break
-        crossing = s < 0 if patch is None else (s < 0) & patch
-        alpha_max = float(xp.min(-gap[crossing] / s[crossing])) if xp.any(crossing) else math.inf
+        if dev:
+            alpha_max = steps[0]
+        else:
+            alpha_max = (
+                float(xp.min(-gap[crossing] / s[crossing])) if xp.any(crossing) else math.inf
+            )
         if alpha <= alpha_max:
-            w += alpha * s
-            kw += alpha * ks
+            if guess:  # the first guess, feasible: its state and scalars are at hand
+                (w, kw, state), values = guess.pop("state"), guess.pop("values")
+                ahead = (state, values)
+            else:
+                w += alpha * s
+                kw += alpha * ks
             e_cur = energy(w, kw)
             exact = False
             continue
+        guess.clear()
         # the step crosses the wall: project it, halve it while it does not lower E
         for _ in range(6):
             w_try = project_feasible(w + alpha * s, lower, rigid)
             kw_try = stiff(w_try)
             e_try = energy(w_try, kw_try)
-            if e_try <= e_cur:
+            if bool(e_try <= e_cur):
                 break
             alpha *= 0.5
         else:
@@ -289,7 +358,7 @@ def minimize_energy_bounded(
 
     gap = base + w
     p_int = law(interaction.pressure, gap)
-    traction = on_patch(xp.where(free, p_int, kw - mu))  # none on the padding
+    traction = on_patch(xp.where(free, p_int, kw - in_dt(mu)))  # none on the padding
     return make_result(
         h,
         substrate,
@@ -306,6 +375,24 @@ def minimize_energy_bounded(
         repulsive=xp.reshape(traction > 0, shape),
         attractive=xp.reshape(traction < 0, shape),
     )
+
+
+def _direction_on_device(xp, rr, z, z_old, s, gz_old, restart, active, active_old):
+    """The PR+ direction ``-z + beta s``, its slope ``rr.s`` and ``rr.z`` as device scalars
+    (the host branches' values: ``beta = 0`` on a restart, a changed face or ``gz_old =
+    0``; a direction that does not descend becomes ``-z``)."""
+    gz = vdot(rr, z)
+    if restart:
+        s = -z
+    else:
+        zero = xp.zeros((), dtype=xp.float64, device=array_device(rr))
+        pr = (gz - vdot(rr, z_old)) / xp.where(gz_old == zero, 1.0, gz_old)
+        keep = ~xp.any(active != active_old) & (gz_old != zero)
+        beta = xp.where(keep, xp.maximum(pr, zero), zero)
+        s = -z + (beta if beta.dtype == s.dtype else xp.astype(beta, s.dtype)) * s
+    slope0 = vdot(rr, s)
+    ascent = slope0 >= 0.0
+    return xp.where(ascent, -z, s), xp.where(ascent, -gz, slope0), gz
 
 
 def _projected_gradient_step(w, kw, rr, e_cur, lower, rigid, stiff, energy, interaction, gap, work):

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 
 from ._inplace import Workspace
-from .reductions import dot
+from .reductions import dot, fetch, on_device, vdot
 from .roots import bracketed_root
 
 __all__ = ["line_minimum"]
@@ -23,6 +23,9 @@ def line_minimum(
     with_pressure=False,
     work=None,
     elastic_slope=None,
+    also=None,
+    speculate=None,
+    speculated=None,
 ):
     """Step ``alpha`` minimising E along ``w + alpha s`` (a root of the directional slope).
 
@@ -37,9 +40,15 @@ def line_minimum(
     grid: none on the padding). ``elastic_slope``, when the caller has it, is ``s.kw``
     (then ``kw`` is not read). ``ks`` (``K s``) may be a function of no arguments giving
     it, called once the band and the curvature at alpha = 0 are done (the caller's ``K z``
-    may still be running).
+    may still be running). ``also``: a list of the caller's device scalars to bring to
+    the host in the line search's first transfer (replaced in place by Python floats).
+    ``speculate(alpha, pressure) -> (state, scalars)`` (device scalars only): the
+    caller's state after the first guess ``alpha``, whose scalars come over in the same
+    transfer; if the guess is taken, ``speculated`` (a dict) receives ``"state"`` and
+    ``"values"`` (the scalars as floats).
     """
-    c0 = dot(s, kw) if elastic_slope is None else elastic_slope
+    also = [] if also is None else also
+    c0 = vdot(s, kw) if elastic_slope is None else elastic_slope
     work = work or Workspace(gap)
     # sites that can feel the interaction for alpha <= 4; the others only matter beyond
     band = math.isfinite(interaction.cutoff)
@@ -60,15 +69,32 @@ def line_minimum(
         # the band's pressure is that of every site for alpha <= 4 (zero off the band)
         return alpha, last["sites"], last["pressure"]
 
-    lo, f_lo = 0.0, slope0
     # Newton guess with the curvature at alpha = 0 (ks is asked for last: the caller may
     # still be computing it)
-    curv = dot(sa * sa, interaction.curvature(ga))
-    c1 = dot(s, ks() if callable(ks) else ks)
-    curv += c1
-    hi = -slope0 / curv if curv > 0 else 1.0
-    hi = min(max(hi, 1e-8), 4.0)
-    f_hi = slope(hi)
+    curv = vdot(sa * sa, interaction.curvature(ga))
+    c1 = vdot(s, ks() if callable(ks) else ks)
+    curv = curv + c1
+    if on_device(curv):
+        # a GPU: the guess and the slope there as device scalars, to the host in one
+        # transfer with the line's other scalars (one host sync for an accepted guess)
+        xp = work.xp
+        hi = xp.where(curv > 0.0, -slope0 / xp.where(curv > 0.0, curv, 1.0), 1.0)
+        hi = xp.minimum(xp.maximum(hi, 1e-8), 4.0)
+        p = interaction.pressure(ga + work.scalar(hi, ga) * sa)
+        last.update(pressure=p, sites=sites)
+        f_hi = c0 + hi * c1 - vdot(sa, p)
+        state, ahead = speculate(hi, p) if speculate is not None else (None, [])
+        k = len(also)
+        c0, c1, slope0, hi, f_hi, *rest = fetch(xp, [c0, c1, slope0, hi, f_hi, *also, *ahead])
+        also[:] = rest[:k]
+        if speculate is not None and abs(f_hi) <= rtol * abs(slope0):
+            speculated.update(state=state, values=rest[k:])
+    else:
+        also[:] = fetch(work.xp, also)
+        hi = -slope0 / curv if curv > 0 else 1.0
+        hi = min(max(hi, 1e-8), 4.0)
+        f_hi = slope(hi)
+    lo, f_lo = 0.0, slope0
     n_eval = 1
     if abs(f_hi) <= rtol * abs(slope0):
         return result(hi)

@@ -86,6 +86,7 @@ from .._backend import (
     array_namespace,
     computes_on_heights_device,
     dtype_name,
+    is_array,
     is_numpy_array,
     to_numpy,
 )
@@ -136,7 +137,7 @@ def _initial_pressure(initial, heights, substrate, load, offset):
     n = heights.shape[0] * heights.shape[1]
     if initial is not None:
         p0 = getattr(initial, "pressure", initial)
-        if is_numpy_array(heights) or not hasattr(p0, "__array_namespace__"):
+        if is_numpy_array(heights) or not is_array(p0):
             p0 = to_numpy(p0)  # a host array (or list) of the warm start
         p0 = xp.asarray(p0, dtype=heights.dtype, device=array_device(heights), copy=True)
         if p0.size != n:

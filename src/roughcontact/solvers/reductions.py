@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._backend import array_namespace, is_numpy_array
+from .._backend import array_namespace, is_numpy_array, to_numpy
 
-__all__ = ["DOT_CHUNK", "dot", "total"]
+__all__ = ["DOT_CHUNK", "dot", "fetch", "on_device", "total", "vdot", "vtotal"]
 
 
 #: Length of the rows a long NumPy inner product is cut into (see :func:`dot`).
@@ -45,3 +45,45 @@ def total(x) -> float:
         return float(np.add.reduce(x, dtype=np.float64))
     xp = array_namespace(x)
     return float(xp.sum(x, dtype=xp.float64))
+
+
+def vdot(a, b):
+    """:func:`dot`, but off NumPy a 0-d float64 array on the device (no host sync)."""
+    if is_numpy_array(a):
+        return dot(a, b)
+    xp = array_namespace(a)
+    return xp.sum(a * b, dtype=xp.float64)
+
+
+def vtotal(x):
+    """:func:`total`, but off NumPy a 0-d float64 array on the device (no host sync)."""
+    if type(x) is np.ndarray:
+        return total(x)
+    xp = array_namespace(x)
+    return xp.sum(x, dtype=xp.float64)
+
+
+def on_device(value) -> bool:
+    """Whether ``value`` is a device scalar (a 0-d array off NumPy), not a Python float."""
+    return not isinstance(value, (float, int)) and not is_numpy_array(value)
+
+
+def fetch(xp, scalars) -> list[float]:
+    """Python floats of several 0-d arrays of namespace ``xp``, in one transfer.
+
+    On a GPU each ``float(x)`` of a device scalar waits for the device (a host sync);
+    stacked, the values come over in one copy. Exact: every value is widened to float64
+    (as ``float`` would) before stacking.
+    """
+    if xp is _NUMPY_XP or not any(on_device(x) for x in scalars):
+        return [float(x) for x in scalars]
+    arrays = [i for i, x in enumerate(scalars) if on_device(x)]
+    wide = [scalars[i] for i in arrays]
+    wide = [x if x.dtype == xp.float64 else xp.astype(x, xp.float64) for x in wide]
+    values = [float(x) if not on_device(x) else None for x in scalars]
+    for i, v in zip(arrays, to_numpy(xp.stack(wide)).tolist(), strict=True):
+        values[i] = v
+    return values
+
+
+_NUMPY_XP = array_namespace(np.empty(0))

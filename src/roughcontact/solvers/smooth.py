@@ -63,6 +63,13 @@ preconditioner's mean comes from sums it already needs, the line search's elasti
 every full-grid update writes into arrays allocated once per solve (:mod:`._inplace`):
 1.3-1.5x less time per iteration than the same steps with a temporary per expression.
 
+Off NumPy (a GPU) the loop's scalars (inner products, ``beta``, the slope, the rigid mean)
+stay 0-d device arrays and the host reads them in one transfer where it branches: the line
+search's first guess and its slope, with the residual's extremes of the state that guess
+gives (computed before the transfer), so an iteration whose guess is taken makes one host
+sync, else two or three. The interaction is evaluated on every site (a mask, not a gather:
+CuPy's boolean indexing syncs), the 9-3 wall as one fused kernel on CuPy.
+
 Convergence measure (``residual``): the largest force imbalance per unit area,
 ``max |K w - p_int(g)|`` (excluding the uniform mode when it is rigid), divided by the
 contact modulus. Everything else in the conventions of the README ('The model').
@@ -95,10 +102,16 @@ from .._backend import (
     array_namespace,
     computes_on_heights_device,
     dtype_name,
-    in_background,
     overlaps_fft,
 )
 from .._validate import ParameterError
+from ._block import (  # noqa: F401 - STIFF_FRACTION, _precondition, _stiff_sites: public here
+    STIFF_FRACTION,
+    _direction_on_device,
+    _direction_stiffness,
+    _precondition,
+    _stiff_sites,
+)
 from ._inplace import Workspace
 from .fourier import compliance_operator, on_work_grid, patch_sites, stiffness_operator
 from .inputs import check_problem, warm_deflection
@@ -106,14 +119,10 @@ from .line_search import line_minimum
 from .loop_control import ReliableUpdates, StallGuard, stopping
 from .observables import make_result
 from .reductions import dot as _dot
-from .reductions import total
+from .reductions import fetch, vdot, vtotal
 from .result import SolveStatus
 
 __all__ = ["minimize_energy"]
-
-#: A site is "stiff" for the preconditioner when V''(g) exceeds this fraction of the
-#: substrate's self-stiffness K_ii (0.02-0.3 measured equally good; see the module docstring).
-STIFF_FRACTION = 0.1
 
 #: The line search stops at |phi'(alpha)| <= LINE_SEARCH_RTOL |phi'(0)|: the strong Wolfe
 #: curvature condition, whose c2 = 0.1 Nocedal & Wright (Numerical Optimization, 2nd ed.,
@@ -282,10 +291,10 @@ def minimize_energy(
     p_near = interaction.pressure(gap if near is None else gap[near])
     gr = xp.empty_like(gap)
 
-    def imbalance():
+    def imbalance(kw, p_near, near):
         """gr = K w - p_int, without its mean when the uniform mode is rigid (its force
         is the load)."""
-        m = (total(kw) - total(p_near)) / n if rigid else 0.0
+        m = (vtotal(kw) - vtotal(p_near)) / n if rigid else 0.0
         g = work.shifted(gr, kw, m)
         if near is None:
             g -= p_near
@@ -293,18 +302,35 @@ def minimize_energy(
             g[near] -= p_near
         return g
 
-    gr = imbalance()
+    def speculate(alpha, p_near):
+        """Off NumPy: the state after the line search's first guess ``alpha`` (a device
+        scalar) with its pressure, and the residual's extremes, which then come to the
+        host in the line search's transfer: an accepted guess (the common case) costs
+        the iteration one host sync instead of two."""
+        gap_, kw_ = work.axpy(gap, alpha, s), work.axpy(kw, alpha, ks)
+        gr_ = imbalance(kw_, p_near, near)
+        return (gap_, kw_, gr_), [xp.max(gr_), xp.min(gr_)]
+
+    gr = imbalance(kw, p_near, near)
     exact = True  # kw is K w from a fresh float64 convolution (not updated incrementally)
     reliable = ReliableUpdates(tol)
     stiff = diagonal = None
     directions = False  # whether s, ks hold conjugate directions to build on
-    s, ks, z, z_old = (xp.empty_like(gap) for _ in range(4))
+    # zero before the first direction: off NumPy the first one is 0 s - z (beta = 0)
+    new = xp.empty_like if work.inplace else xp.zeros_like
+    s, ks, z, z_old = (new(gap) for _ in range(4))
     gz_old = 1.0
     status, message = SolveStatus.ITERATION_LIMIT, "iteration cap reached"
     residual, it = math.inf, 0
+    extremes, guess = None, {}  # the residual's extremes fetched ahead; speculate's result
     stall = FloorGuard(StallGuard(dtype_name(h)), dtype_name(h), lambda: _largest(p_near), es, tol)
     while True:
-        residual = max(float(xp.max(gr)), -float(xp.min(gr))) / es
+        # the one host transfer of an iteration besides the line search's (a GPU waits here)
+        if extremes is None:
+            gr_max, gr_min = fetch(xp, [xp.max(gr), xp.min(gr)])
+        else:  # brought over with the line search's guess (speculate)
+            (gr_max, gr_min), extremes = extremes, None
+        residual = max(gr_max, -gr_min) / es
         if not math.isfinite(residual):
             status = SolveStatus.NON_FINITE
             message = f"non-finite state at iteration {it} (check inputs and the interaction)"
@@ -312,7 +338,7 @@ def minimize_energy(
         if (update := reliable.check(residual, exact)) == "refresh":
             w = work.difference(gap, base)  # in the scratch array, consumed at once
             kw, exact = elastic_pressure(w, out=kw if work.inplace else None), True
-            gr = imbalance()
+            gr = imbalance(kw, p_near, near)
             continue
         if update == "restart":
             directions = False  # they were built on a drifted gradient
@@ -332,15 +358,18 @@ def minimize_energy(
             gr, stiff, diagonal, compliance, elastic_pressure, rigid,
             out=z, work=work, fast=fast, result=fast_result, background=overlap,
         )  # fmt: skip
-        gz = _dot(gr, z)
-        # PR+ (gz_old is 0 only at the rounding floor of a deeply compressed state)
-        restart = restart or gz_old == 0
-        beta = 0.0 if restart else max(0.0, (gz - _dot(gr, z_old)) / gz_old)
-        # s = -z + beta s (in place), and below ks = K s = -K z + beta ks
-        s = work.scale_sub(s, beta, z) if beta > 0 else work.negative(s, z)
-        slope0 = _dot(gr, s)
-        if slope0 >= 0:  # not a descent direction: restart along the preconditioned -gr
-            s, slope0, beta = work.negative(s, z), -gz, 0.0
+        if work.inplace:
+            gz = _dot(gr, z)
+            # PR+ (gz_old is 0 only at the rounding floor of a deeply compressed state)
+            restart = restart or gz_old == 0
+            beta = 0.0 if restart else max(0.0, (gz - _dot(gr, z_old)) / gz_old)
+            # s = -z + beta s (in place), and below ks = K s = -K z + beta ks
+            s = work.scale_sub(s, beta, z) if beta > 0 else work.negative(s, z)
+            slope0 = _dot(gr, s)
+            if slope0 >= 0:  # not a descent direction: restart along the preconditioned -gr
+                s, slope0, beta = work.negative(s, z), -gz, 0.0
+        else:  # the same with device scalars, selected by masks (no host sync)
+            s, slope0, beta, gz = _direction_on_device(xp, work, gr, z, z_old, s, gz_old, restart)
         gz_old, directions = gz, True
         if callable(kz):  # K z still on the background thread: ks when the line search needs it
             ks_of_s = functools.partial(_direction_stiffness, work, ks, beta, kz)
@@ -348,7 +377,7 @@ def minimize_energy(
             ks = ks_of_s = _direction_stiffness(work, ks, beta, kz)
         # s.K w from the slope, s.gr = s.K w - s.p_int (s has no mean when the mean is
         # rigid): a dot over the interaction's sites instead of the grid
-        elastic_slope = slope0 + _dot(s if near is None else s[near], p_near)
+        elastic_slope = slope0 + vdot(s if near is None else s[near], p_near)
         alpha, near, p_near = line_minimum(
             interaction,
             gap,
@@ -360,15 +389,20 @@ def minimize_energy(
             with_pressure=True,
             work=work,
             elastic_slope=elastic_slope,
+            speculate=None if work.inplace else speculate,
+            speculated=guess,
         )
         if not math.isfinite(alpha):
             status = SolveStatus.LINE_SEARCH_FAILED
             message = f"line search failed at iteration {it}"
             break
-        work.axpy(gap, alpha, s)
-        work.axpy(kw, alpha, ks)
         exact = False
-        gr = imbalance()
+        if guess:  # the first guess was taken: its state and extremes are at hand
+            (gap, kw, gr), extremes = guess.pop("state"), guess.pop("values")
+            continue
+        gap = work.axpy(gap, alpha, s)
+        kw = work.axpy(kw, alpha, ks)
+        gr = imbalance(kw, p_near, near)
 
     if patch is not None:  # the patch of the work grid (no pressure on the padding)
         gap, base = gap[patch], base[patch]
@@ -398,83 +432,3 @@ def _largest(values) -> float:
         return 0.0
     xp = array_namespace(values)
     return float(xp.max(xp.abs(values)))
-
-
-def _stiff_sites(interaction, gap, self_stiffness, work=None):
-    """The preconditioner's stiff sites, V'' > STIFF_FRACTION K_ii, and 1/(K_ii + V'') there.
-
-    Returns ``(sites, diagonal)`` (see :mod:`._inplace` for sites; ``diagonal`` holds the
-    values on them, in their order), or ``(None, None)`` when no site is stiff (then the
-    preconditioner is the Green's function alone).
-    """
-    work = work or Workspace(gap)
-    xp = work.xp
-    # V'' = 0 beyond the cutoff (and off the patch): only sites inside it can be stiff
-    near = work.interacting(gap, interaction.cutoff)
-    curvature = interaction.curvature(gap if near is None else gap[near])
-    stiff = curvature > STIFF_FRACTION * self_stiffness
-    if not bool(xp.any(stiff)):
-        return None, None
-    diagonal = 1.0 / (self_stiffness + curvature[stiff])
-    if near is None:
-        return work.sites(stiff), diagonal
-    if work.inplace:
-        return near[stiff], diagonal
-    sites = xp.zeros_like(near)  # a mask over the grid
-    sites[near] = stiff
-    return sites, diagonal
-
-
-def _direction_stiffness(work, ks, beta, kz):
-    """``K s`` for ``s = -z + beta s_old``: ``-K z + beta ks`` (in place on NumPy). ``kz``
-    may be a function that waits for ``K z``."""
-    kz = kz() if callable(kz) else kz
-    return work.scale_sub(ks, beta, kz) if beta > 0 else work.negative(ks, kz)
-
-
-def _precondition(
-    gr,
-    stiff,
-    diagonal,
-    compliance,
-    elastic_pressure,
-    rigid,
-    *,
-    out=None,
-    work=None,
-    fast=None,
-    result=None,
-    background=False,
-):
-    """Block-preconditioned gradient ``z`` and its elastic pressure ``K z``.
-
-    ``z = diagonal * gr`` on the stiff sites and ``K^-1 (gr on the other sites)`` there;
-    both blocks are symmetric positive definite, so is the preconditioner (restricted
-    to mean-free fields when the uniform mode is rigid). With ``fast`` (a float32 array
-    of the grid's size) both convolutions run in single precision: the Green's-function
-    block only steers the search direction, and ``K z`` (then returned in float32) only
-    updates the elastic pressure incrementally (see the module docstring). ``out``
-    receives ``z`` where the backend allows; ``result`` (NumPy, float32, with ``fast``)
-    receives both convolutions, one after the other (``K z`` is returned in it). With
-    ``background`` (NumPy, with ``fast``) ``K z`` is computed on the background thread
-    and a function of no arguments that waits for it is returned in its place.
-    """
-    work = work or Workspace(gr)
-    xp = work.xp
-    if stiff is None:
-        # K K^-1 is the identity on the non-uniform modes, and gr has no uniform mode
-        # when it is rigid: no second convolution
-        return compliance(gr), gr
-    soft = work.cast(fast, gr) if fast is not None else xp.asarray(gr, copy=True)
-    soft[stiff] = 0.0
-    soft_block = compliance(soft, out=result)
-    z_stiff = gr[stiff] * diagonal
-    shift = 0.0
-    if rigid:  # the mean of z, without a pass of its own
-        shift = (total(soft_block) - total(soft_block[stiff]) + total(z_stiff)) / gr.shape[0]
-    z = work.shifted(out if out is not None else xp.empty_like(gr), soft_block, shift)
-    z[stiff] = z_stiff - shift
-    z_fast = work.cast(fast, z) if fast is not None else z
-    if background and fast is not None:
-        return z, in_background(elastic_pressure, z_fast, out=result)
-    return z, elastic_pressure(z_fast, out=result)

@@ -169,7 +169,9 @@ def compute_task(task: Task):
     ds = ds.drop_vars([f for f in FIELDS if f in ds.variables and f not in s["output"]["fields"]])
     t2 = time.perf_counter()
     try:
-        analysis = analyze_path(ds, heights=heights, substrate=substrate, **s["analysis"])
+        analysis = analyze_path(
+            ds, heights=heights, substrate=substrate, device=task.device, **s["analysis"]
+        )  # the hard-wall reference's solves on the task's device, as the path's
         analysis, error = analysis.to_dict(), ""
     except ParameterError as err:  # the target area not reached, unconverged steps there
         analysis, error = {}, str(err)

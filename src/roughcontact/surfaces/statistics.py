@@ -56,7 +56,7 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
-from .._backend import array_namespace, rfft2, to_numpy
+from .._backend import array_device, array_namespace, is_cupy_array, is_numpy_array, rfft2, to_numpy
 from .._validate import PIXEL_SIZE, ParameterError, heights2d
 
 __all__ = [
@@ -125,24 +125,38 @@ def _check_method(method: str | None, periodic: bool) -> str:
     return method
 
 
+def _like(values, xp, like):
+    """Host ``values`` as an array of ``like``'s namespace, on its device."""
+    if like is None or is_numpy_array(like):
+        return values
+    if is_cupy_array(like):
+        with like.device:  # CuPy allocates on the current GPU
+            return xp.asarray(values)
+    return xp.asarray(values, device=array_device(like))
+
+
 def _wavevectors(xp, nx: int, ny: int, pixel_size: float, like):
     """Wavevectors of the rfft2 layout (shape (nx, 1) and (1, ny//2+1)) and Parseval weights.
 
     Returns ``qx, qy`` (full), ``qx1, qy1`` (first-derivative wavevectors, Nyquist set
     to zero) and ``weights`` counting each rfft mode for itself and its mirror image.
     """
-    dev = getattr(like, "device", None)
-    kw = {} if dev is None else {"device": dev}
-    qx = 2 * math.pi * xp.fft.fftfreq(nx, d=pixel_size, **kw)
-    qy = 2 * math.pi * xp.fft.rfftfreq(ny, d=pixel_size, **kw)
-    ix = xp.arange(nx, **kw)
-    iy = xp.arange(ny // 2 + 1, **kw)
-    qx1 = xp.where(ix == nx // 2, 0.0, qx) if nx % 2 == 0 else qx
-    qy1 = xp.where(iy == ny // 2, 0.0, qy) if ny % 2 == 0 else qy
+    # built on the host and moved once: array_api_compat's fftfreq/rfftfreq take no
+    # device but "cpu" (a CuPy array's device raised "Unsupported device"), and these
+    # are O(n) values
+    qx = 2 * math.pi * np.fft.fftfreq(nx, d=pixel_size)
+    qy = 2 * math.pi * np.fft.rfftfreq(ny, d=pixel_size)
+    qx1, qy1 = qx.copy(), qy.copy()
+    if nx % 2 == 0:
+        qx1[nx // 2] = 0.0
+    if ny % 2 == 0:
+        qy1[ny // 2] = 0.0
     # rfft keeps ky >= 0; modes 0 < ky < ny/2 stand for themselves and their mirror.
-    last = ny // 2 if ny % 2 == 0 else -1
-    one = xp.ones_like(qy)
-    wy = xp.where((iy == 0) | (iy == last), one, 2 * one)
+    wy = np.full(qy.shape, 2.0)
+    wy[0] = 1.0
+    if ny % 2 == 0:
+        wy[ny // 2] = 1.0
+    qx, qy, qx1, qy1, wy = (_like(v, xp, like) for v in (qx, qy, qx1, qy1, wy))
     return (
         xp.reshape(qx, (nx, 1)),
         xp.reshape(qy, (1, -1)),

@@ -1,0 +1,88 @@
+#!/usr/bin/env bash
+# Issue 34's GPU check in one script: the GPU tests, benchmarks/gpu.py at 1024²-4096²
+# (float64 and float32, ms per iteration and cuFFT pairs, GPU/CPU at 2048²), the 4096²
+# paper task with its analysis, a 512² task on the GPU against one CPU core, the 41-state
+# 4096² path and the task through the real Dask path. Each step has its own time limit,
+# so a slow one does not take the rest with it; everything goes to $LOG.
+#
+#   benchmarks/gpu_check.sh                         # on a GPU machine, from the repo root
+#   DEVICE=cpu SIZES="64 128" TASK_SIZE=128 SMALL=64 PATH_SIZE=128 CPU_SIZE=128 \
+#       benchmarks/gpu_check.sh                     # a dry run on the CPU
+#   PART=quick benchmarks/gpu_check.sh              # tests + float64 sizes only
+#   PART=second benchmarks/gpu_check.sh             # GPU side only: tests, float64 and
+#                                                   # float32 sizes, 4096² task and path
+set -u -o pipefail
+export PYTHONUNBUFFERED=1
+PY=${PY:-python3}
+DEVICE=${DEVICE:-cuda}
+SIZES=${SIZES:-1024 2048 4096}
+CPU_SIZE=${CPU_SIZE:-2048}
+TASK_SIZE=${TASK_SIZE:-4096}
+SMALL=${SMALL:-512}
+PATH_SIZE=${PATH_SIZE:-4096}
+PART=${PART:-all}
+OUTDIR=${OUT:-/tmp/gpu_check}
+mkdir -p "$OUTDIR"
+LOG=${LOG:-$OUTDIR/log}
+TMP=$(mktemp -d)
+step() {  # step SECONDS TITLE COMMAND...: run with a limit, log the time it took
+    local limit=$1 title=$2
+    shift 2
+    echo "=== $title ($(date -u +%T), limit ${limit}s)"
+    local t0=$SECONDS
+    timeout "$limit" "$@"
+    echo "=== $title: rc=$? in $((SECONDS - t0)) s"
+}
+{
+    echo "=== gpu_check $(date -u) device=$DEVICE sizes=$SIZES part=$PART"
+    if [ "$DEVICE" != cpu ]; then
+        nvidia-smi --query-gpu=name,memory.total,driver_version --format=csv
+    fi
+    $PY -c "import sys, numpy, scipy, array_api_compat, roughcontact; print(sys.version.split()[0], 'numpy', numpy.__version__, 'scipy', scipy.__version__, 'array_api_compat', array_api_compat.__version__, roughcontact.__file__)"
+    [ "$DEVICE" != cpu ] && $PY -c "import cupy; print('cupy', cupy.__version__)"
+    step 90 "GPU tests" $PY -m pytest -q -p no:cacheprovider \
+        tests/backends/test_cupy.py tests/backends/test_device_detection.py
+    cpu=(--cpu-sizes)
+    [ -n "$CPU_SIZE" ] && [ "$PART" = all ] && cpu=(--cpu-sizes "$CPU_SIZE" --cpu-repeats 1)
+    # shellcheck disable=SC2086
+    step 150 "gpu.py float64" $PY benchmarks/gpu.py --device "$DEVICE" --sizes $SIZES \
+        "${cpu[@]}" --path-size 0 --repeats 3 --json "$OUTDIR/gpu64.json"
+    [ "$PART" = quick ] && exit 0
+    if [ "$PART" = second ]; then  # a later, shorter run: the GPU side only
+        step 100 "paper task ${TASK_SIZE}² on $DEVICE" $PY benchmarks/gpu_task.py \
+            --device "$DEVICE" --size "$TASK_SIZE" --json "$OUTDIR/task.json"
+        step 90 "41-state path ${PATH_SIZE}²" $PY benchmarks/gpu.py --device "$DEVICE" \
+            --sizes --cpu-sizes --path-size "$PATH_SIZE" --json "$OUTDIR/path.json"
+        # shellcheck disable=SC2086
+        step 40 "gpu.py float32" $PY benchmarks/gpu.py --device "$DEVICE" --sizes $SIZES \
+            --cpu-sizes --path-size 0 --repeats 2 --dtype float32 --json "$OUTDIR/gpu32.json"
+        step 30 "task ${SMALL}² on $DEVICE" $PY benchmarks/gpu_task.py --device "$DEVICE" \
+            --size "$SMALL" --json "$OUTDIR/task_small.json"
+        echo "=== done $(date -u)"
+        exit 0
+    fi
+    step 120 "paper task ${TASK_SIZE}² on $DEVICE" $PY benchmarks/gpu_task.py \
+        --device "$DEVICE" --size "$TASK_SIZE" --json "$OUTDIR/task.json"
+    # shellcheck disable=SC2086
+    step 60 "gpu.py float32" $PY benchmarks/gpu.py --device "$DEVICE" --sizes $SIZES \
+        --cpu-sizes --path-size 0 --repeats 2 --dtype float32 --json "$OUTDIR/gpu32.json"
+    step 45 "task ${SMALL}² on $DEVICE" $PY benchmarks/gpu_task.py --device "$DEVICE" \
+        --size "$SMALL" --json "$OUTDIR/task_small.json"
+    step 60 "task ${SMALL}² on one CPU core" $PY benchmarks/gpu_task.py --device cpu \
+        --threads 1 --size "$SMALL" --json "$OUTDIR/task_small_cpu.json"
+    step 90 "41-state path ${PATH_SIZE}²" $PY benchmarks/gpu.py --device "$DEVICE" \
+        --sizes --cpu-sizes --path-size "$PATH_SIZE" --json "$OUTDIR/path.json"
+    $PY benchmarks/gpu_task.py --write-study "$TMP/one.toml" --size "$SMALL"
+    step 60 "study run ${SMALL}² through Dask on $DEVICE" $PY -c "from roughcontact.cli.main import main; main()" study run \
+        "$TMP/one.toml" -o "$TMP/study" --device "$DEVICE" --workers 1 --no-progress
+    $PY -c "
+import glob, xarray as xr
+for f in sorted(glob.glob('$TMP/study/*.nc')):
+    try:
+        a = xr.open_dataset(f).attrs
+    except Exception as err:
+        print(f, err); continue
+    print(f.split('/')[-1], {k: round(float(a[k]), 2) for k in a if k.endswith('_seconds')})
+"
+    echo "=== done $(date -u)"
+} 2>&1 | tee "$LOG"

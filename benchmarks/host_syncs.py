@@ -1,0 +1,142 @@
+"""CPU proxy of a GPU iteration's overheads: host syncs and arrays created per iteration.
+
+On a GPU every conversion of a device array to a Python scalar (``float(x)``, ``if x``,
+``int(x)``, an index) waits for the device (a host sync), and every array the step
+creates is a kernel launch and an allocation. Both are counted here without a GPU, on
+``array_api_strict`` arrays (a strict array-API library on the CPU, standing for CuPy):
+calls of ``Array.__float__``/``__bool__``/``__int__``/``__index__``/``__complex__`` and
+conversions to NumPy (``__array__``, ``__dlpack__``: several scalars fetched at once) are
+"syncs"; those conversions of more than a few elements are also "host copies"; and every
+array created (``Array._new``) is counted.
+
+"Per iteration" is the marginal count: the same solve run to ``--iterations`` and to
+twice that many iterations (a tolerance it cannot meet), the difference divided by the
+extra iterations, so the set-up and the final result record are not counted. Load
+control's outer search runs whole inner solves; its count is per inner iteration.
+
+    python benchmarks/host_syncs.py                 # every solver, 128²
+    python benchmarks/host_syncs.py --size 64 --json syncs.json
+
+Targets (issue 34): at most 2 syncs and 40 arrays per iteration for every solver.
+"""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import json
+import sys
+
+import roughcontact as rc
+
+SYNCS = ("__float__", "__bool__", "__int__", "__index__", "__complex__")
+COPIES = ("__array__", "__dlpack__")
+#: conversions of arrays of more than this many elements count as host copies
+SMALL = 16
+
+
+@contextlib.contextmanager
+def counting():
+    """Counts of syncs, host copies and arrays created by array_api_strict in the block."""
+    from array_api_strict._array_object import Array
+
+    counts = {"syncs": 0, "copies": 0, "arrays": 0}
+    saved = {name: Array.__dict__[name] for name in (*SYNCS, *COPIES, "_new")}
+
+    def wrap(name, copy=False):
+        original = saved[name]
+
+        def hook(self, *args, **kwargs):
+            # any transfer waits for the device; more than a few elements is also a copy
+            counts["syncs"] += 1
+            if copy and (self.size is None or self.size > SMALL):
+                counts["copies"] += 1
+            return original(self, *args, **kwargs)
+
+        return hook
+
+    for name in SYNCS:
+        setattr(Array, name, wrap(name))
+    for name in COPIES:
+        setattr(Array, name, wrap(name, copy=True))
+    new = saved["_new"].__func__
+
+    def counted_new(cls, *args, **kwargs):
+        counts["arrays"] += 1
+        return new(cls, *args, **kwargs)
+
+    Array._new = classmethod(counted_new)
+    try:
+        yield counts
+    finally:
+        for name, value in saved.items():
+            setattr(Array, name, value)
+
+
+def problems(n: int):
+    """(name, solve(max_iter, tol) -> result) for every solver, on array_api_strict heights."""
+    import array_api_strict as xp
+
+    h = rc.self_affine((n, n), hurst=0.8, rms_slope=0.1, short_cutoff=4, seed=3)
+    hs = xp.asarray(h)
+    sub = rc.Substrate((n, n))
+    top = float(h.max())
+    smooth = rc.SmoothLJ93.from_adhesion_length(0.005)
+    exponential = rc.Exponential(work_of_adhesion=0.01, range=0.4)
+    sphere = xp.asarray(rc.sphere((n, n), 0.6 * n))
+
+    def solve(heights, law, **control):
+        return lambda max_iter, tol: rc.solve(
+            heights, sub, law, max_iter=max_iter, tol=tol, **control
+        )
+
+    return [
+        ("hardwall-load", solve(hs, rc.HardWall(), load=2e-3), False),
+        ("hardwall-offset", solve(hs, rc.HardWall(), offset=top - 0.3 * float(h.std())), False),
+        ("smooth", solve(hs, smooth, offset=top + 0.6), False),
+        ("bounded", solve(hs, exponential, offset=top - 0.1), False),
+        ("load-control", solve(sphere, exponential, load=2e-4), True),
+    ]
+
+
+def measure(run, iterations: int, whole: bool) -> dict:
+    """Marginal counts per iteration (``whole``: per inner iteration of a full solve)."""
+    if whole:  # load control: whole inner solves, counted per inner iteration
+        with counting() as c:
+            res = run(iterations * 40, None)
+        its = max(res.iterations, 1)
+        return {k: v / its for k, v in c.items()} | {"iterations": res.iterations}
+    with counting() as a:
+        ra = run(iterations, 1e-15)
+    with counting() as b:
+        rb = run(2 * iterations, 1e-15)
+    extra = rb.iterations - ra.iterations
+    if extra <= 0:
+        raise RuntimeError(f"no extra iterations ({ra.iterations} -> {rb.iterations})")
+    return {k: (b[k] - a[k]) / extra for k in a} | {"iterations": rb.iterations}
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--size", type=int, default=128)
+    ap.add_argument("--iterations", type=int, default=20)
+    ap.add_argument("--only", nargs="*", help="solver names to run (default: all)")
+    ap.add_argument("--json", metavar="OUT")
+    args = ap.parse_args(argv)
+    rows = {}
+    print(f"array_api_strict, {args.size}², marginal counts per iteration")
+    print(f"{'solver':>16} {'syncs':>7} {'copies':>7} {'arrays':>7}")
+    for name, run, whole in problems(args.size):
+        if args.only and name not in args.only:
+            continue
+        rows[name] = measure(run, args.iterations, whole)
+        r = rows[name]
+        print(f"{name:>16} {r['syncs']:7.2f} {r['copies']:7.2f} {r['arrays']:7.1f}", flush=True)
+    if args.json:
+        with open(args.json, "w") as f:
+            json.dump({"size": args.size, "per_iteration": rows}, f, indent=1)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
