@@ -225,3 +225,78 @@ def band_width(repulsive_area: float, hard_wall_area: float, perimeter: float) -
     if not p > 0:
         raise ParameterError(f"perimeter must be > 0, got {perimeter!r}")
     return (float(repulsive_area) - float(hard_wall_area)) / p
+
+
+#: πδ/d_rep above which the soft wall's repulsive band is reported as a warning.
+BAND_WARNING = 0.1
+
+
+def _substrate_from_attrs(attrs):
+    from ..elastic import Substrate
+
+    thickness = float(attrs.get("thickness", math.inf))
+    return Substrate(
+        tuple(int(n) for n in np.atleast_1d(attrs["grid"])),
+        contact_modulus=float(attrs["contact_modulus"]),
+        pixel_size=float(attrs["pixel_size"]),
+        thickness=None if math.isinf(thickness) else thickness,
+        poisson=float(attrs.get("poisson", 0.5)),
+        base=str(attrs.get("base") or "bonded"),
+    )
+
+
+def reference_fields(ds, heights, substrate, target, at, kappa_rep, d_rep, device=None) -> dict:
+    """The hard-wall reference's fields of a path analysis (and its warnings).
+
+    ``ds`` is the path dataset, ``at`` its observables interpolated to the target area;
+    the substrate is rebuilt from the path's attributes when ``substrate`` is None.
+    """
+    if heights is None and "heights" in ds.variables:
+        heights = np.asarray(ds["heights"].values, dtype=float)
+    if heights is None:
+        return {
+            "warnings": [
+                "hard-wall reference not computed: the path holds no heights (pass heights=, "
+                "or write the path with this version of roughcontact)"
+            ]
+        }
+    substrate = _substrate_from_attrs(ds.attrs) if substrate is None else substrate
+    ref = hard_wall_reference(
+        heights,
+        substrate,
+        target_area=target,
+        rms_slope=float(ds.attrs["rms_slope"]),
+        load=at["repulsive_load"],
+        device=device,
+    )
+    delta = band_width(target, ref.area_at_load, at["perimeter"])
+    out = {
+        "kappa_rep_hard_wall": ref.kappa_rep,
+        "kappa_rep_hard_wall_corrected": ref.kappa_rep_corrected,
+        "hard_wall_repulsive_area": ref.area_at_load,
+        "band_width": delta,
+        "band_fraction": math.pi * delta / d_rep,
+        "warnings": [],
+    }
+    if not ref.converged:
+        out["warnings"].append(
+            f"the hard-wall reference did not converge in {ref.solves} solves: its values are "
+            "approximate"
+        )
+    if out["band_fraction"] > BAND_WARNING:
+        k = float(ds.attrs.get("stiffness", math.nan)) * float(ds.attrs["pixel_size"])
+        wall = (
+            f"its site stiffness k = {k / float(ds.attrs['contact_modulus']):.3g} E*/a0 per area"
+            if math.isfinite(k)
+            else "its finite stiffness"
+        )
+        out["warnings"].append(
+            f"kappa_rep = {kappa_rep:.3g} includes a band of width delta = {delta:.3g} "
+            f"around every contact (pi delta/d_rep = {out['band_fraction']:.0%}) where the "
+            f"wall is weakly repulsive; a hard wall on the same surface gives kappa_rep = "
+            f"{ref.kappa_rep:.3g} "
+            f"({ref.kappa_rep_corrected:.3g} with the corrected area). The band comes from "
+            f"the wall model ({wall}, softer than the substrate's on-site stiffness), not "
+            "from adhesion or the grid: a larger grid keeps it, a stiffer wall removes it"
+        )
+    return out

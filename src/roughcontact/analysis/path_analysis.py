@@ -47,8 +47,8 @@ import numpy as np
 
 from .._validate import FIT_MAX_AREA, TARGET_AREA, ParameterError, json_ready
 from ..pathdata import REQUIRED, check_path, read_path
-from .hard_wall_reference import band_width
-from .hard_wall_reference import hard_wall_reference as _hard_wall_reference
+from .hard_wall_reference import BAND_WARNING as BAND_WARNING  # public, kept here too
+from .hard_wall_reference import reference_fields
 from .hysteresis import hysteresis
 from .path import interpolate_at_area
 from .stickiness import NOT_STICKY, STICKY, is_sticky
@@ -57,8 +57,6 @@ __all__ = ["PathAnalysis", "UnconvergedPathError", "analyze_path", "load_path"]
 
 #: The variables the analysis reads (the path layout's required ones).
 _REQUIRED = REQUIRED
-#: πδ/d_rep above which the soft wall's repulsive band is reported as a warning.
-BAND_WARNING = 0.1
 
 
 class UnconvergedPathError(ParameterError):
@@ -349,7 +347,7 @@ def analyze_path(
     d_rep = _ratio(math.pi * target, at["perimeter"])
     theory = _theory(a, kappa_rep, d_rep, w / modulus, dr)
     reference = (
-        _reference(ds, heights, substrate, target, at, kappa_rep, d_rep, device)
+        reference_fields(ds, heights, substrate, target, at, kappa_rep, d_rep, device)
         if hard_wall_reference
         else {"warnings": []}
     )
@@ -410,73 +408,6 @@ def _pull_off_warnings(ds, attrs) -> list[str]:
         n = int((~np.asarray(ds["converged"].values, dtype=bool)[back]).sum())
         if n:
             out.append(f"the pull-off force rests on a retraction with {n} unconverged steps")
-    return out
-
-
-def _substrate_from_attrs(attrs):
-    from ..elastic import Substrate
-
-    thickness = float(attrs.get("thickness", math.inf))
-    return Substrate(
-        tuple(int(n) for n in np.atleast_1d(attrs["grid"])),
-        contact_modulus=float(attrs["contact_modulus"]),
-        pixel_size=float(attrs["pixel_size"]),
-        thickness=None if math.isinf(thickness) else thickness,
-        poisson=float(attrs.get("poisson", 0.5)),
-        base=str(attrs.get("base") or "bonded"),
-    )
-
-
-def _reference(ds, heights, substrate, target, at, kappa_rep, d_rep, device=None) -> dict:
-    """The hard-wall reference's fields of :class:`PathAnalysis` (and its warnings)."""
-    if heights is None and "heights" in ds.variables:
-        heights = np.asarray(ds["heights"].values, dtype=float)
-    if heights is None:
-        return {
-            "warnings": [
-                "hard-wall reference not computed: the path holds no heights (pass heights=, "
-                "or write the path with this version of roughcontact)"
-            ]
-        }
-    substrate = _substrate_from_attrs(ds.attrs) if substrate is None else substrate
-    ref = _hard_wall_reference(
-        heights,
-        substrate,
-        target_area=target,
-        rms_slope=float(ds.attrs["rms_slope"]),
-        load=at["repulsive_load"],
-        device=device,
-    )
-    delta = band_width(target, ref.area_at_load, at["perimeter"])
-    out = {
-        "kappa_rep_hard_wall": ref.kappa_rep,
-        "kappa_rep_hard_wall_corrected": ref.kappa_rep_corrected,
-        "hard_wall_repulsive_area": ref.area_at_load,
-        "band_width": delta,
-        "band_fraction": math.pi * delta / d_rep,
-        "warnings": [],
-    }
-    if not ref.converged:
-        out["warnings"].append(
-            f"the hard-wall reference did not converge in {ref.solves} solves: its values are "
-            "approximate"
-        )
-    if out["band_fraction"] > BAND_WARNING:
-        k = float(ds.attrs.get("stiffness", math.nan)) * float(ds.attrs["pixel_size"])
-        wall = (
-            f"its site stiffness k = {k / float(ds.attrs['contact_modulus']):.3g} E*/a0 per area"
-            if math.isfinite(k)
-            else "its finite stiffness"
-        )
-        out["warnings"].append(
-            f"kappa_rep = {kappa_rep:.3g} includes a band of width delta = {delta:.3g} "
-            f"around every contact (pi delta/d_rep = {out['band_fraction']:.0%}) where the "
-            f"wall is weakly repulsive; a hard wall on the same surface gives kappa_rep = "
-            f"{ref.kappa_rep:.3g} "
-            f"({ref.kappa_rep_corrected:.3g} with the corrected area). The band comes from "
-            f"the wall model ({wall}, softer than the substrate's on-site stiffness), not "
-            "from adhesion or the grid: a larger grid keeps it, a stiffer wall removes it"
-        )
     return out
 
 
