@@ -14,13 +14,22 @@ surfaces that continue the measured spectrum down to the interaction scale
   (:meth:`ScaleStatistics.extrapolated_at`, the same numbers as the Eq. 10 verdict). The
   synthetic surface is a window of ``size`` a0 onto the smallest scales: Eqs. 6-10 depend
   on h'_rms, H and lambda_s, not on the long scales it leaves out.
-* **Interaction**: the paper's smoothed 9-3 wall with ``l_a = w/E*``
-  (:meth:`roughcontact.SmoothLJ93.from_adhesion_length`): stiffness k = E*/(2 a0) and
-  range ``sqrt(24 a0 l_a)``, which is *not* the Delta_r of the Eq. 10 verdict (the
-  interaction range the user gave). ``l_a/a0`` must lie in :data:`ADHESION_RANGE`: at
-  ``l_a/a0 = 0.1`` (and above) the approach of a surface with h'_rms = 0.1 measured here
-  is pulled into an adhered state whose repulsive area never reaches 1 % over the
-  offsets below; the paper's largest is 0.05.
+* **Interaction**: the paper's smoothed 9-3 wall with ``l_a = w/E*`` and the range
+  Delta_r the user asked for (``interaction_range``, what :func:`roughcontact.stick`
+  passes): continuity of the smoothed wall ties ``w = k Delta_r^2/12``, so its stiffness
+  is ``k = 12 w/Delta_r^2`` (silicon, w = 0.1 J/m^2, Delta_r = 0.5 nm: k = 4.8e18 Pa/m,
+  about E*/(59 a0) -- softer than the paper's E*/(2 a0), which would tie the range to
+  ``sqrt(24 a0 l_a)`` = 0.065 nm). Without ``interaction_range`` the paper's
+  parametrisation (:meth:`roughcontact.SmoothLJ93.from_adhesion_length`), for which
+  ``l_a/a0`` must lie in :data:`ADHESION_RANGE`: at ``l_a/a0 = 0.1`` (and above) its
+  range grows to ``sqrt(24 a0 l_a)`` and the approach of a surface with h'_rms = 0.1 is
+  pulled into an adhered state whose repulsive area never reaches 1 %; the paper's
+  largest is 0.05. With the range given, :data:`ADHESION_RANGE_GIVEN` reaches soft
+  materials: measured on the ``di-1.di`` AFM scan (64^2 sites, one seed, Delta_r =
+  0.5 nm), l_a/a0 = 0.2, 0.3 and 62.5 (PDMS: E 2 MPa, nu 0.5, w 0.05 J/m^2) all came
+  out sticky (kappa < 0, a finite pull-off force), at 62.5 the repulsive area jumping
+  to 1.3 % in one step: the surfaces jump into contact, the model's own limit for soft
+  solids. No coarse-graining is assumed: the lattice stays a0.
 * **Path**: an elastic substrate of thickness ``size`` a0 on a rigid base (nu = 1/2,
   as the study of :mod:`roughcontact.studies` runs the paper), approached at offsets in
   bearing-area units (:func:`roughcontact.solvers.offsets.relative_offsets`: the
@@ -53,9 +62,11 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .._validate import HURST, ParameterError, Range, json_safe
+from .simulate_units import SIMULATION_UNITS
 
 __all__ = [
     "ADHESION_RANGE",
+    "ADHESION_RANGE_GIVEN",
     "SEEDS",
     "SIMULATION_UNITS",
     "SIZE",
@@ -71,8 +82,12 @@ __all__ = [
 SIZE = Range(64, 1024, integer=True)
 #: Number of surface realisations (seeds 1, 2, ...).
 SEEDS = Range(1, 32, integer=True)
-#: l_a/a0 = w/(E* a0) the simulation handles (module docstring: measured limit).
+#: l_a/a0 = w/(E* a0) the simulation handles with the paper's parametrisation (module
+#: docstring: measured limit).
 ADHESION_RANGE = Range(1e-5, 0.05)
+#: l_a/a0 handled with the range given (the wall's stiffness 12 w/range^2): soft materials
+#: such as PDMS (l_a/a0 ~ 60) included (module docstring).
+ADHESION_RANGE_GIVEN = Range(1e-5, 100.0)
 #: lambda_s/a0 of the synthetic surface: the paper's smallest short cutoff.
 SHORT_CUTOFF = 4.0
 #: Smallest Hurst exponent of the synthetic surface (``self_affine`` takes (0, 1]).
@@ -102,9 +117,10 @@ def check_options(size, seeds) -> tuple[int, int]:
     return SIZE.check("simulate_size", size), SEEDS.check("simulate_seeds", seeds)
 
 
-def _adhesion_over_a0(work_of_adhesion, contact_modulus, atomic_spacing) -> float:
+def _adhesion_over_a0(work_of_adhesion, contact_modulus, atomic_spacing, given=False) -> float:
     la = work_of_adhesion / contact_modulus / atomic_spacing
-    if not ADHESION_RANGE.contains(la):
+    accepted = ADHESION_RANGE_GIVEN if given else ADHESION_RANGE
+    if not accepted.contains(la):
         raise ParameterError(
             f"simulate: the adhesion length l_a/a0 = work_of_adhesion/(E* atomic_spacing) = "
             f"{la:.3g} must be {ADHESION_RANGE.accepted} for the simulation (the paper's "
@@ -264,58 +280,6 @@ class Simulation:
         return json_safe(d)
 
 
-#: The unit of every number of ``Simulation.to_dict()`` under the key ``simulation``.
-SIMULATION_UNITS = {
-    "simulation.kappa": "1 (h'rms E* A_rep/N at A_rep = 1 %, 1/mean of 1/kappa over seeds)",
-    "simulation.inverse_kappa": "1 (mean over seeds)",
-    "simulation.inverse_kappa_interval": "1 (confidence interval of the mean)",
-    "simulation.predicted_kappa": "1 (Eq. 10's, 1/mean of 1/kappa over seeds)",
-    "simulation.predicted_inverse_kappa": "1",
-    "simulation.predicted_inverse_kappa_interval": "1",
-    "simulation.confidence": "1 (two-sided level of the intervals)",
-    "simulation.seeds_analysed": "realisations",
-    "simulation.pull_off_pressure": "Pa (mean over seeds)",
-    "simulation.target_area": "1 (A_rep/A0)",
-    "simulation.surface.size": "grid points per axis",
-    "simulation.surface.atomic_spacing": "m (a0, the lattice spacing)",
-    "simulation.surface.physical_size": "m (size a0)",
-    "simulation.surface.short_cutoff": "m (lambda_s)",
-    "simulation.surface.long_cutoff": "m (lambda_L)",
-    "simulation.surface.short_cutoff_over_a0": "a0",
-    "simulation.surface.long_cutoff_over_a0": "a0",
-    "simulation.surface.hurst": "1 (used)",
-    "simulation.surface.hurst_fitted": "1 (the scan's fit)",
-    "simulation.surface.rms_slope": "1 (h'rms extrapolated to lambda_s)",
-    "simulation.interaction.adhesion_length": "m (l_a = w/E*)",
-    "simulation.interaction.adhesion_length_over_a0": "1 (l_a/a0)",
-    "simulation.interaction.range": "m (sqrt(24 a0 l_a), the wall's; not inputs.interaction_range)",
-    "simulation.interaction.range_over_a0": "a0",
-    "simulation.interaction.stiffness": "Pa/m (E*/(2 a0))",
-    "simulation.interaction.work_of_adhesion": "J/m^2",
-    "simulation.interaction.contact_modulus": "Pa",
-    "simulation.path.bearing_area": "1 (fractions of A0 overlapped by the undeformed surfaces)",
-    "simulation.path.lead_in": "a0 (above the first contact)",
-    "simulation.path.until_area": "1 (A_rep/A0 that ends the approach)",
-    "simulation.path.tol": "E* (largest force imbalance per site)",
-    "simulation.path.max_iter": "iterations",
-    "simulation.path.thickness": "m (substrate on a rigid base)",
-    "simulation.path.poisson": "1",
-    "simulation.seeds.seed": "1 (seed of the surface)",
-    "simulation.seeds.kappa": "1",
-    "simulation.seeds.kappa_rep": "1",
-    "simulation.seeds.kappa_att": "1",
-    "simulation.seeds.inverse_kappa": "1",
-    "simulation.seeds.predicted_kappa": "1",
-    "simulation.seeds.attractive_area": "1 (A_att/A0 at A_rep = 1 %)",
-    "simulation.seeds.pull_off": "E* (pull-off force per A0)",
-    "simulation.seeds.pull_off_pressure": "Pa (pull_off E*)",
-    "simulation.seeds.steps": "path steps",
-    "simulation.seeds.steps_not_converged": "path steps",
-    "simulation.seeds.seconds": "s",
-    "simulation.seconds": "s",
-}
-
-
 class _ApproachFields:
     """Keep the pressure of the approach state nearest :data:`TARGET_AREA` (Fig. 1's
     choice, as :class:`roughcontact.studies.task.AreaFields`), ignoring the retraction:
@@ -412,6 +376,7 @@ def simulate_stickiness(
     size: int = 256,
     seeds: int = 3,
     progress=None,
+    interaction_range: float | None = None,
 ) -> Simulation:
     """Run the paper's simulation on synthetic surfaces continuing the scan's spectrum.
 
@@ -431,6 +396,10 @@ def simulate_stickiness(
         Realisations (seeds 1 ... ``seeds``), in :data:`SEEDS`.
     progress : callable, optional
         ``progress(k, seeds)`` before realisation k (1-based).
+    interaction_range : float, optional
+        Delta_r [m] of the wall: the range the user asked for, with the stiffness
+        ``k = 12 w/Delta_r^2`` that continuity of the smoothed wall requires. None: the
+        paper's parametrisation (k = E*/(2 a0), range ``sqrt(24 a0 l_a)``).
 
     Returns
     -------
@@ -444,12 +413,16 @@ def simulate_stickiness(
     """
     from ..analysis.stickiness import inverse_mean
     from ..interactions import SmoothLJ93
+    from .notes import simulation_notes
 
     n, count = check_options(size, seeds)
     E, w, a0 = float(contact_modulus), float(work_of_adhesion), float(atomic_spacing)
-    la = _adhesion_over_a0(w, E, a0)
+    la = _adhesion_over_a0(w, E, a0, given=interaction_range is not None)
     t0 = time.perf_counter()
-    law = SmoothLJ93.from_adhesion_length(la)
+    if interaction_range is None:
+        law = SmoothLJ93.from_adhesion_length(la)
+    else:
+        law = SmoothLJ93(work_of_adhesion=la, range=float(interaction_range) / a0)
     runs, surface = [], None
     for k in range(1, count + 1):
         if progress is not None:
@@ -477,6 +450,9 @@ def simulate_stickiness(
         "range": law.range * a0,
         "range_over_a0": law.range,
         "stiffness": law.stiffness * E / a0,
+        "parametrisation": "paper: k = E*/(2 a0)"
+        if interaction_range is None
+        else "range given: k = 12 w/range^2",
         "work_of_adhesion": w,
         "contact_modulus": E,
     }
@@ -490,6 +466,18 @@ def simulate_stickiness(
         "thickness": n * a0,
         "poisson": 0.5,
     }
+    verdict, extra = inv.verdict, []
+    if (
+        inv.n == 0
+        and runs
+        and all(r.error and math.isfinite(r.pull_off) and r.pull_off > 0 for r in runs)
+    ):  # the model's limit for soft solids (module docstring)
+        verdict = "sticky"
+        extra.append(
+            "simulation: no seed reached A_rep = 1 % on approach, and every seed needed a "
+            "finite pull-off force to separate: the surfaces jump into contact, the model's "
+            "limit for soft solids: sticky"
+        )
     return Simulation(
         surface=surface_d,
         interaction=interaction,
@@ -497,33 +485,8 @@ def simulate_stickiness(
         runs=tuple(runs),
         inverse_kappa=inv,
         predicted_inverse_kappa=pred,
-        verdict=inv.verdict,
+        verdict=verdict,
         predicted_verdict=pred.verdict,
-        notes=tuple(_notes(surface, runs, law, a0)),
+        notes=tuple(simulation_notes(surface, runs, law, a0, HURST_MIN, SHORT_CUTOFF) + extra),
         seconds=time.perf_counter() - t0,
     )
-
-
-def _notes(surface, runs, law, a0) -> list:
-    from .verdict import _length_text
-
-    notes = [
-        f"simulation: the paper's smoothed 9-3 wall with range sqrt(24 a0 l_a) = "
-        f"{_length_text(law.range * a0)} (not the interaction range of Eq. 10), on synthetic "
-        f"surfaces with lambda_s = {SHORT_CUTOFF:g} a0 and h'rms = {surface['rms_slope']:.3g}, "
-        "the scan's h'rms extrapolated to lambda_s"
-    ]
-    if surface["hurst_clipped"]:
-        notes.append(
-            f"simulation: the fitted H = {surface['hurst_fitted']:.3f} is outside "
-            f"[{HURST_MIN:g}, 1]; the synthetic surfaces use H = {surface['hurst']:.3g}"
-        )
-    if surface["rms_slope"] > 1:
-        notes.append(
-            f"simulation: h'rms = {surface['rms_slope']:.3g} > 1 at lambda_s, beyond the "
-            "small-slope surfaces of the paper"
-        )
-    for r in runs:
-        if r.error:
-            notes.append(f"simulation seed {r.seed}: no result ({r.error})")
-    return notes
