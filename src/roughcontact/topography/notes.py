@@ -165,7 +165,7 @@ def simulation_notes(surface, runs, law, a0, hurst_min, short_cutoff) -> list:
     """The notes of :func:`~.simulate.simulate_stickiness` (lengths of ``law`` in a0)."""
     notes = [
         f"simulation: the paper's smoothed 9-3 wall with range {length_text(law.range * a0)} "
-        f"and stiffness {law.stiffness:.3g} E*/a0 (w = k range^2/12), on synthetic "
+        f"({law.name}), on synthetic "
         f"surfaces with lambda_s = {short_cutoff:g} a0 and h'rms = {surface['rms_slope']:.3g}, "
         "the scan's h'rms extrapolated to lambda_s"
     ]

@@ -102,7 +102,7 @@ def simulation_summary(sim) -> list[str]:
         f"Eq. 10 on the same surfaces: {sim.predicted_verdict}",
         f"simulation: {s['size']}^2 sites of a0 = {_length_text(s['atomic_spacing'])}, "
         f"lambda_s = {s['short_cutoff_over_a0']:g} a0, H = {s['hurst']:.2f}, "
-        f"h'rms = {s['rms_slope']:.3g}; 9-3 wall l_a/a0 = {i['adhesion_length_over_a0']:.3g}, "
+        f"h'rms = {s['rms_slope']:.3g}; wall l_a/a0 = {i['adhesion_length_over_a0']:.3g}, "
         f"range {_length_text(i['range'])} ({i.get('parametrisation', '')})",
         f"per seed kappa (kappa_rep, kappa_att) at A_rep = 1 %: {seeds}; pull-off pressure "
         + (f"{pull:.3g} Pa" if np.isfinite(pull) else "not measured"),

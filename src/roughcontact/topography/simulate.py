@@ -14,22 +14,25 @@ surfaces that continue the measured spectrum down to the interaction scale
   (:meth:`ScaleStatistics.extrapolated_at`, the same numbers as the Eq. 10 verdict). The
   synthetic surface is a window of ``size`` a0 onto the smallest scales: Eqs. 6-10 depend
   on h'_rms, H and lambda_s, not on the long scales it leaves out.
-* **Interaction**: the paper's smoothed 9-3 wall with ``l_a = w/E*`` and the range
-  Delta_r the user asked for (``interaction_range``, what :func:`roughcontact.stick`
-  passes): continuity of the smoothed wall ties ``w = k Delta_r^2/12``, so its stiffness
-  is ``k = 12 w/Delta_r^2`` (silicon, w = 0.1 J/m^2, Delta_r = 0.5 nm: k = 4.8e18 Pa/m,
-  about E*/(59 a0) -- softer than the paper's E*/(2 a0), which would tie the range to
-  ``sqrt(24 a0 l_a)`` = 0.065 nm). Without ``interaction_range`` the paper's
-  parametrisation (:meth:`roughcontact.SmoothLJ93.from_adhesion_length`), for which
-  ``l_a/a0`` must lie in :data:`ADHESION_RANGE`: at ``l_a/a0 = 0.1`` (and above) its
-  range grows to ``sqrt(24 a0 l_a)`` and the approach of a surface with h'_rms = 0.1 is
-  pulled into an adhered state whose repulsive area never reaches 1 %; the paper's
-  largest is 0.05. With the range given, :data:`ADHESION_RANGE_GIVEN` reaches soft
-  materials: measured on the ``di-1.di`` AFM scan (64^2 sites, one seed, Delta_r =
-  0.5 nm), l_a/a0 = 0.2, 0.3 and 62.5 (PDMS: E 2 MPa, nu 0.5, w 0.05 J/m^2) all came
-  out sticky (kappa < 0, a finite pull-off force), at 62.5 the repulsive area jumping
-  to 1.3 % in one step: the surfaces jump into contact, the model's own limit for soft
-  solids. No coarse-graining is assumed: the lattice stays a0.
+* **Interaction**: with ``interaction_range`` (what :func:`roughcontact.stick` passes:
+  the range Delta_r the user asked for) a Maugis-Dugdale zone on a hard wall
+  (:class:`roughcontact.MaugisDugdale`: the stress w/Delta_r up to the gap Delta_r), so
+  that w and Delta_r are both the user's. The paper's smoothed 9-3 wall cannot do this:
+  continuity ties ``w = k Delta_r^2/12``, so with its stiffness k = E*/(2 a0) the range
+  is ``sqrt(24 a0 l_a)`` (silicon: 0.065 nm, not 0.5 nm), and with the range forced the
+  stiffness drops to ``12 w/Delta_r^2`` (silicon: E*/(59 a0)), a soft core that spread
+  the repulsion and measured kappa_rep = 40 on a surface where the hard wall gives 3.2
+  (64^2 sites, h'_rms = 0.3, l_a/a0 = 5e-4: sticky there, not sticky on the hard wall,
+  as Eq. 10 predicts). Without ``interaction_range`` the paper's wall
+  (:meth:`roughcontact.SmoothLJ93.from_adhesion_length`), for which ``l_a/a0`` must lie
+  in :data:`ADHESION_RANGE`: at ``l_a/a0 = 0.1`` its range grows to ``sqrt(24 a0 l_a)``
+  and the approach is pulled into an adhered state whose repulsive area never reaches
+  1 %; the paper's largest is 0.05. With the range given, :data:`ADHESION_RANGE_GIVEN`
+  reaches soft materials (PDMS: E 2 MPa, nu 0.5, w 0.05 J/m^2, l_a/a0 = 62.5): there no
+  seed reaches 1 % repulsive area on approach while every one needs a finite pull-off
+  force -- the surfaces jump into contact, the model's own limit for soft solids, which
+  is reported as "sticky" (measured on the ``metropro-1.dat`` and ``di-1.di`` scans,
+  64^2 sites). No coarse-graining is assumed: the lattice stays a0.
 * **Path**: an elastic substrate of thickness ``size`` a0 on a rigid base (nu = 1/2,
   as the study of :mod:`roughcontact.studies` runs the paper), approached at offsets in
   bearing-area units (:func:`roughcontact.solvers.offsets.relative_offsets`: the
@@ -412,7 +415,7 @@ def simulate_stickiness(
         :data:`ADHESION_RANGE`.
     """
     from ..analysis.stickiness import inverse_mean
-    from ..interactions import SmoothLJ93
+    from ..interactions import MaugisDugdale, SmoothLJ93
     from .notes import simulation_notes
 
     n, count = check_options(size, seeds)
@@ -422,7 +425,7 @@ def simulate_stickiness(
     if interaction_range is None:
         law = SmoothLJ93.from_adhesion_length(la)
     else:
-        law = SmoothLJ93(work_of_adhesion=la, range=float(interaction_range) / a0)
+        law = MaugisDugdale(work_of_adhesion=la, range=float(interaction_range) / a0)
     runs, surface = [], None
     for k in range(1, count + 1):
         if progress is not None:
@@ -444,15 +447,15 @@ def simulate_stickiness(
         "rms_slope": surface["rms_slope"],
     }
     interaction = {
-        "law": "lj93smooth",
+        "law": law.name,
         "adhesion_length": la * a0,
         "adhesion_length_over_a0": la,
         "range": law.range * a0,
         "range_over_a0": law.range,
-        "stiffness": law.stiffness * E / a0,
-        "parametrisation": "paper: k = E*/(2 a0)"
+        "stiffness": (getattr(law, "stiffness", None) or math.inf) * E / a0,
+        "parametrisation": "paper's 9-3 wall: k = E*/(2 a0)"
         if interaction_range is None
-        else "range given: k = 12 w/range^2",
+        else "Maugis-Dugdale zone of the range given on a hard wall",
         "work_of_adhesion": w,
         "contact_modulus": E,
     }
