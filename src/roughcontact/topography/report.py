@@ -98,7 +98,12 @@ def simulation_summary(sim) -> list[str]:
     )
     pull = sim.pull_off_pressure
     return [
-        f"simulated: {sim.verdict} over {inv.n} of {len(sim.runs)} seeds{interval}; "
+        (
+            f"simulated: {sim.verdict} over {inv.n} of {len(sim.runs)} seeds{interval}; "
+            if inv.n
+            else f"simulated: {sim.verdict} ({len(sim.runs)} seeds, none analysed at 1 %: "
+            "see the notes); "
+        )
         f"Eq. 10 on the same surfaces: {sim.predicted_verdict}",
         f"simulation: {s['size']}^2 sites of a0 = {_length_text(s['atomic_spacing'])}, "
         f"lambda_s = {s['short_cutoff_over_a0']:g} a0, H = {s['hurst']:.2f}, "

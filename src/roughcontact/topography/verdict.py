@@ -243,7 +243,12 @@ def stick(
         "fill_missing": fill_missing,
     }  # fmt: skip
     simulation = None
-    if simulate:
+    if simulate and problem:
+        notes.append(
+            "simulation not run: its synthetic surfaces continue the fitted spectrum below "
+            "the measured scale, and there is no self-affine spectrum to continue"
+        )
+    elif simulate:
         from .simulate import simulate_stickiness
 
         simulation = simulate_stickiness(
