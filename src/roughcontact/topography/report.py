@@ -97,14 +97,13 @@ def simulation_summary(sim) -> list[str]:
         for r in sim.runs
     )
     pull = sim.pull_off_pressure
+    how = (
+        f"over {inv.n} of {len(sim.runs)} seeds{interval}"
+        if inv.n
+        else f"({len(sim.runs)} seeds, none analysed at 1 %: see the notes)"
+    )
     return [
-        (
-            f"simulated: {sim.verdict} over {inv.n} of {len(sim.runs)} seeds{interval}; "
-            if inv.n
-            else f"simulated: {sim.verdict} ({len(sim.runs)} seeds, none analysed at 1 %: "
-            "see the notes); "
-        )
-        f"Eq. 10 on the same surfaces: {sim.predicted_verdict}",
+        f"simulated: {sim.verdict} {how}; Eq. 10 on the same surfaces: {sim.predicted_verdict}",
         f"simulation: {s['size']}^2 sites of a0 = {_length_text(s['atomic_spacing'])}, "
         f"lambda_s = {s['short_cutoff_over_a0']:g} a0, H = {s['hurst']:.2f}, "
         f"h'rms = {s['rms_slope']:.3g}; wall l_a/a0 = {i['adhesion_length_over_a0']:.3g}, "
