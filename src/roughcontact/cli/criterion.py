@@ -55,6 +55,12 @@ def _report(r) -> str:
 @click.option("--modulus", default=None, help="Contact modulus E* = E/(1-nu^2), e.g. '10 MPa'.")
 @click.option("--youngs-modulus", default=None, help="Young's modulus E (with --poisson).")
 @click.option("--poisson", default=None, help="Poisson ratio nu (with --youngs-modulus).")
+@click.option(
+    "--counter-modulus",
+    default=None,
+    help="Counter-surface's E (with --counter-poisson) or E/(1-nu^2); default rigid.",
+)
+@click.option("--counter-poisson", default=None, help="Counter-surface's Poisson ratio.")
 @click.option("--work-of-adhesion", "work", required=True, help="w, e.g. '50 mJ/m^2'.")
 @click.option("--rms-slope", required=True, help="h'rms (dimensionless).")
 @click.option("--range", "range_", required=True, help="Interaction range Δr, e.g. '0.5 nm'.")
@@ -63,13 +69,15 @@ def _report(r) -> str:
 @click.option("--kappa-rep", default=2.0, show_default=True, type=float, help="Non-adhesive κ_rep.")
 @click.option("--atomic-spacing", default="0.3 nm", show_default=True, help="a0 (necessary cond.).")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object (SI units).")
-def criterion(modulus, youngs_modulus, poisson, work, rms_slope, range_, d_rep, rms_curvature,
-              kappa_rep, atomic_spacing, as_json):  # fmt: skip
+def criterion(modulus, youngs_modulus, poisson, counter_modulus, counter_poisson, work,
+              rms_slope, range_, d_rep, rms_curvature, kappa_rep, atomic_spacing,
+              as_json):  # fmt: skip
     """Stickiness criterion (Pastewka & Robbins 2014, Eq. 10) for real materials.
 
     Give --modulus (E*) or --youngs-modulus with --poisson, and exactly one of --d-rep
     and --rms-curvature. Values take units (Pa, J/m^2, m, 1/m with prefixes); plain
-    numbers are SI.
+    numbers are SI. The counter-surface is rigid unless --counter-modulus is given:
+    1/E* = (1-nu1^2)/E1 + (1-nu2^2)/E2.
     """
     from ..criterion import stickiness_criterion
 
@@ -83,6 +91,13 @@ def criterion(modulus, youngs_modulus, poisson, work, rms_slope, range_, d_rep, 
         raise ParameterError("--poisson goes with --youngs-modulus")
     if (d_rep is None) == (rms_curvature is None):
         raise ParameterError("give exactly one of --d-rep and --rms-curvature")
+    pair = None
+    if counter_modulus is not None or counter_poisson is not None:
+        from ..moduli import composite_modulus
+
+        body = (modulus, None) if modulus is not None else (youngs_modulus, poisson)
+        pair = composite_modulus(*body, counter_modulus, counter_poisson)
+        modulus, youngs_modulus, poisson = pair.contact_modulus, None, None
     r = stickiness_criterion(
         contact_modulus=modulus,
         youngs_modulus=youngs_modulus,
@@ -96,6 +111,9 @@ def criterion(modulus, youngs_modulus, poisson, work, rms_slope, range_, d_rep, 
         atomic_spacing=atomic_spacing,
     )
     if as_json:
-        click.echo(json.dumps(r.to_dict()))
+        d = r.to_dict()
+        if pair is not None:
+            d["counter_modulus"], d["contact_modulus_formula"] = pair.counter, pair.text
+        click.echo(json.dumps(d))
     else:
-        click.echo(_report(r))
+        click.echo(_report(r) + ("" if pair is None else f"\n{pair.text}"))

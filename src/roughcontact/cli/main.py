@@ -246,10 +246,10 @@ def _surface_file_options(f):
             help="Least-squares mean, tilt or 2nd-order polynomial removed from SURFACE.",
         ),
         click.option(
-            "--fill-missing",
-            is_flag=True,
-            help="Fill missing points of an instrument file (harmonic interpolation) "
-            "instead of refusing it.",
+            "--fill-missing/--no-fill-missing",
+            default=None,
+            help="Fill missing points of an instrument file of any fraction (harmonic "
+            "interpolation) / refuse any. Default: fill up to 1 % (said on stderr), refuse more.",
         ),
     ]
     for o in reversed(opts):
@@ -450,6 +450,10 @@ def _load_surface(surface_file, channel, detrend, fill_missing, pixel_size):
             h = np.array(remove_trend(Topography(h, pixel_size), detrend).heights)
         return h, pixel_size, None
     topo = load_topography(surface_file, channel=channel, fill_missing=fill_missing)
+    if topo.info.get("missing_data"):  # the one line every reader of scans prints
+        from ..topography.missing import fill_note
+
+        click.echo(f"note: {fill_note(topo.info['missing_data'], topo.heights.size)}", err=True)
     if topo.dim != 2:
         raise ParameterError(
             f"SURFACE {str(surface_file)!r} is a line scan of {topo.shape[0]} points; "

@@ -315,12 +315,7 @@ def _read(scan, channel, pixel_size, height_unit, periodic, fill_missing, Topogr
             raise ParameterError(
                 "channel, pixel_size and height_unit apply to a file, not to a Topography"
             )
-        from .read import missing_policy
-
-        heights, info = missing_policy(
-            "scan", topo_heights(scan), fill_missing, scan.periodic, dict(scan.info)
-        )
-        topo = scan if info is None else _replace(scan, heights=heights, info=info)
+        topo = scan  # a Topography holds no missing points (it refuses NaN)
     else:
         from .read import load_topography
 
@@ -339,17 +334,6 @@ def _read(scan, channel, pixel_size, height_unit, periodic, fill_missing, Topogr
             "for a file without units, e.g. pixel_size='10 nm', height_unit='nm'"
         )
     return topo
-
-
-def topo_heights(topo):
-    """The heights of a Topography with its missing points (NaN) as they are."""
-    return np.asarray(topo.heights, dtype=float)
-
-
-def _replace(topo, **changes):
-    import dataclasses
-
-    return dataclasses.replace(topo, **changes)
 
 
 def _detrend(topo, mode):
