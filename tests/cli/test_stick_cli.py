@@ -210,3 +210,85 @@ def test_simulate_bad_options_one_line(fine_scan):
     soft = ["--modulus", "1 MPa", "--work-of-adhesion", "50 mJ/m^2"]  # l_a/a0 = 167 > 100
     err = _one_line_error(_run([fine_scan, *FINE, *soft, "--simulate"]))
     assert "l_a/a0" in err and "167" in err
+
+
+# --------------------------------------------- issue #29: real files, stiff to soft materials
+
+SILICON = ["--modulus", "160GPa", "--poisson", "0.22", "--work-of-adhesion", "0.1J/m^2"]
+PDMS = ["--modulus", "2MPa", "--poisson", "0.5", "--work-of-adhesion", "0.05J/m^2"]
+ALL_FILES = ["di-1.di", "nid-1.nid", "metropro-1.dat", "dektak-1.csv"]
+
+
+@pytest.mark.parametrize("name", ALL_FILES)
+def test_every_real_file_ends_in_a_verdict_that_states_its_grounds(name):
+    """Silicon is not sticky on the rough scans, PDMS sticky on all four (the smooth
+    ones); a verdict from a spectrum that is not self-affine says so in the text."""
+    for material in (SILICON, PDMS):
+        r = _run([_real(name), *material, "--json"])
+        assert r.exit_code == 0, r.output
+        d = json.loads(r.output)
+        text = _run([_real(name), *material]).output
+        assert text.startswith(f"verdict: {d['verdict']}")
+        for note in d["notes"]:
+            assert note in text  # every note in the text output, not only in JSON
+        if d["no_extrapolation"]:
+            assert "no extrapolated verdict because" in text and d["extrapolated"] is None
+        else:
+            assert 0 < d["hurst"] < 1  # never a confident extrapolation from H outside (0, 1)
+        if material is PDMS:
+            assert d["sticky"] is True
+        elif name != "metropro-1.dat":  # the optical flat: depends on unmeasured roughness
+            assert d["sticky"] is False
+        else:
+            assert d["sticky"] is None and "depends on roughness below" in d["verdict"]
+
+
+def test_the_stylus_profile_is_not_self_affine_above_its_resolution():
+    """dektak-1.csv: H < 0 between the stylus' resolution and the scan size -- nothing is
+    extrapolated, the text says why and how to proceed."""
+    r = _run([_real("dektak-1.csv"), *PDMS])
+    assert r.exit_code == 0, r.output
+    lines = r.output.splitlines()
+    assert lines[0] == "verdict: sticky at the measured scale (roughness down to 3.86 um); " + (
+        "no extrapolated verdict"
+    )
+    assert lines[1].startswith("no extrapolated verdict because the spectrum")
+    assert "outside (0, 1)" in lines[1] and "--fit-range" in lines[1]
+    fixed = _run([_real("dektak-1.csv"), *PDMS, "--fit-range", "4um", "20um", "--json"])
+    assert json.loads(fixed.output)["hurst_fit_range"] == pytest.approx([4e-6, 20e-6])
+
+
+def test_counter_surface_and_fill_missing_options(scan, tmp_path):
+    rigid = json.loads(_run([scan, *NPY, *SILICON, "--json"]).output)
+    pair = json.loads(
+        _run(
+            [
+                scan,
+                *NPY,
+                *SILICON,
+                "--counter-modulus",
+                "160GPa",
+                "--counter-poisson",
+                "0.22",
+                "--json",
+            ]
+        ).output  # fmt: skip
+    )
+    assert pair["inputs"]["contact_modulus"] == pytest.approx(
+        rigid["inputs"]["contact_modulus"] / 2
+    )
+    h = np.load(scan)
+    h[3, 4] = np.nan  # 1 of 16384 points: filled by default, and said
+    holed = tmp_path / "holed.npy"
+    np.save(holed, h)
+    r = _run([holed, *NPY, *SILICON])
+    assert r.exit_code == 0 and "note: filled 1 of 16384 missing points" in r.output
+    err = _one_line_error(_run([holed, *NPY, *SILICON, "--no-fill-missing"]))
+    assert "--fill-missing" in err
+    h[:40] = np.nan  # 31 %: refused by default, filled when asked, with the fraction
+    h[100, 3] = np.nan
+    np.save(holed, h)
+    err = _one_line_error(_run([holed, *NPY, *SILICON]))
+    assert "31.3% of the points (5121 of 16384)" in err and "--fill-missing" in err
+    r = _run([holed, *NPY, *SILICON, "--fill-missing"])
+    assert r.exit_code == 0 and "31.256% of the scan" in r.output

@@ -73,8 +73,8 @@ def missing_policy(name, data, fill_missing, periodic, info):
         raise ParameterError(f"{name}: every point is missing; no heights to read")
     if fill_missing is None and fraction > MISSING_FILL_MAX:
         raise ParameterError(
-            f"{name}: {fraction:.3g} of the points ({fraction:.1%}, {count} of "
-            f"{missing.size}) are missing (NaN or masked by the instrument), more than the "
+            f"{name}: {fraction:.1%} of the points ({count} of {missing.size}) are missing "
+            "(NaN or masked by the instrument), more than the "
             f"{MISSING_FILL_MAX:.0%} filled by default; {_option_text()} fills them by "
             "harmonic interpolation, which removes the roughness of the filled area"
         )
