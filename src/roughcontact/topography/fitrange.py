@@ -28,7 +28,8 @@ finds both limits from the binned PSD:
 outside (0, 1) is not self-affine (H <= 0: the rms slope grows without bound however
 little roughness is added, H >= 1: not a fractal power law, often a resolution limit);
 a standard error above :data:`MAX_HURST_STDERR` (a two-sigma band wider than 0.6, most
-of the physical range) is too poor to continue over decades.
+of the physical range) whose two-sigma band leaves (0, 1) is too poor to continue over
+decades (a wide band inside (0, 1) is propagated: the verdict then depends on it).
 
 Lengths in m, wavevectors in 1/m.
 """
@@ -208,10 +209,12 @@ def self_affine_problem(fit) -> str:
             f"the spectrum {span} is not self-affine (H = {fit.hurst:.2f} +- "
             f"{fit.hurst_stderr:.2f}, outside (0, 1))"
         )
-    if fit.hurst_stderr > MAX_HURST_STDERR:
+    lo, hi = fit.interval(2.0)
+    if fit.hurst_stderr > MAX_HURST_STDERR and not 0 < lo < hi < 1:
         return (
             f"the spectrum {span} fits a power law poorly (H = {fit.hurst:.2f} +- "
-            f"{fit.hurst_stderr:.2f}, standard error above {MAX_HURST_STDERR:g})"
+            f"{fit.hurst_stderr:.2f}: a standard error above {MAX_HURST_STDERR:g} and a "
+            f"two-sigma band {lo:.2f} to {hi:.2f} that leaves (0, 1))"
         )
     return ""
 
