@@ -258,3 +258,23 @@ def test_simulation_uses_the_range_asked_for_and_soft_solids_jump_into_contact()
     assert sim.runs[0].pull_off > 0
     assert any("jumped into contact" in n for n in sim.notes)
     assert any("jumped into contact" in line for line in summary(soft))
+
+
+@pytest.mark.parametrize(
+    ("hurst", "stderr", "word"),
+    [
+        (2.14, 0.15, "not self-affine"),  # the .al3d fit of the issue
+        (-0.68, 0.05, "not self-affine"),  # the .mnt fit along its noise floor
+        (0.09, 0.17, "poorly"),  # the .plu fit: band -0.25 to 0.43
+        (0.38, 0.16, ""),  # a wide band inside (0, 1): propagated, not refused
+        (0.8, 0.05, ""),
+    ],
+)
+def test_which_fits_support_an_extrapolation(hurst, stderr, word):
+    from roughcontact.topography.statistics import HurstFit
+
+    fit = HurstFit(hurst, stderr, 2, 1e8, 1e-36, (10 * NM, 1e-6), 12)
+    problem = self_affine_problem(fit)
+    assert (word in problem) if word else problem == ""
+    if word:
+        assert "10 nm to 1 um" in problem and f"{hurst:.2f}" in problem

@@ -59,7 +59,8 @@ def _pixel_size(text):
 @click.option(
     "--reliability-cutoff",
     default=None,
-    help="Shortest reliable wavelength, instead of --tip-radius, e.g. '50 nm'.",
+    help="Shortest reliable wavelength, instead of --tip-radius, e.g. '50 nm' (then no "
+    "search for a noise floor or resolution limit in the PSD).",
 )
 @click.option(
     "--detrend",
@@ -101,8 +102,8 @@ def _pixel_size(text):
     nargs=2,
     default=None,
     metavar="SHORT LONG",
-    help="Wavelengths of the Hurst fit, e.g. '10nm 1um' (default: 4 pixels or the "
-    "reliability cutoff to a quarter of the scan).",
+    help="Wavelengths of the Hurst fit, e.g. '10nm 1um' (default: 4 pixels, the "
+    "reliability cutoff or the instrument's limit found in the PSD, to a quarter of the scan).",
 )
 @click.option(
     "--hurst-sigmas",

@@ -140,9 +140,11 @@ def stick(
     periodic : bool
         Whether a file's scan is one period of a periodic surface (no window).
     reliability_cutoff : float or str, optional
-        The shortest reliable wavelength [m], instead of ``tip_radius``.
+        The shortest reliable wavelength [m], instead of ``tip_radius``; the user's word:
+        no search for the instrument's limits in the PSD then.
     fit_range : (float, float), optional
-        Wavelengths [m] of the Hurst fit (default: see ``scale_statistics``).
+        Wavelengths [m] of the Hurst fit (default: from the measured scale, after the
+        instrument's limits, or 4 pixels, to a quarter of the scan).
     hurst_sigmas : float
         Half-width of the H band in standard errors, default 2 (about 95 %).
     simulate : bool
