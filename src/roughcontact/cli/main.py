@@ -448,7 +448,7 @@ def _load_surface(surface_file, channel, detrend, fill_missing, pixel_size):
         try:
             h = load_heights(surface_file, channel=channel)
         except ParameterError as err:  # NaN points: the missing-data policy of every reader
-            if "finite" not in str(err):
+            if "found NaN" not in str(err):
                 raise
             h = np.array(_filled(load_topography(surface_file, fill_missing=fill_missing)).heights)
         if detrend != "none":
