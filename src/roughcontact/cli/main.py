@@ -451,6 +451,8 @@ def _load_surface(surface_file, channel, detrend, fill_missing, pixel_size):
             if "found NaN" not in str(err):
                 raise
             h = np.array(_filled(load_topography(surface_file, fill_missing=fill_missing)).heights)
+            if h.ndim != 2:
+                raise ParameterError(f"{err} (and a line scan: expected a 2D height map)") from None
         if detrend != "none":
             h = np.array(remove_trend(Topography(h, pixel_size), detrend).heights)
         return h, pixel_size, None
