@@ -265,7 +265,9 @@ def test_simulation_uses_the_range_asked_for_and_soft_solids_jump_into_contact()
     [
         (2.14, 0.15, "not self-affine"),  # the .al3d fit of the issue
         (-0.68, 0.05, "not self-affine"),  # the .mnt fit along its noise floor
-        (0.09, 0.17, "poorly"),  # the .plu fit: band -0.25 to 0.43
+        (0.09, 0.17, "reaches H <= 0"),  # the .plu fit: band -0.25 to 0.43
+        (0.04, 0.06, "reaches H <= 0"),  # nid-1.nid: h'rms 4.7 at 0.3 nm
+        (0.7, 0.2, "poorly"),  # band 0.3 to 1.1
         (0.38, 0.16, ""),  # a wide band inside (0, 1): propagated, not refused
         (0.8, 0.05, ""),
     ],

@@ -27,9 +27,11 @@ finds both limits from the binned PSD:
 :func:`self_affine_problem` then judges the fit between these limits: a Hurst exponent
 outside (0, 1) is not self-affine (H <= 0: the rms slope grows without bound however
 little roughness is added, H >= 1: not a fractal power law, often a resolution limit);
+a two-sigma band that reaches H <= 0 cannot be told from a flat spectrum (an H of 0.04
+continued over three decades gives h'_rms of order 5: the issue's .plu and .nid cases);
 a standard error above :data:`MAX_HURST_STDERR` (a two-sigma band wider than 0.6, most
-of the physical range) whose two-sigma band leaves (0, 1) is too poor to continue over
-decades (a wide band inside (0, 1) is propagated: the verdict then depends on it).
+of the physical range) whose band leaves (0, 1) is too poor to continue over decades (a
+wide band inside (0, 1) is propagated: the verdict then depends on it).
 
 Lengths in m, wavevectors in 1/m.
 """
@@ -210,6 +212,12 @@ def self_affine_problem(fit) -> str:
             f"{fit.hurst_stderr:.2f}, outside (0, 1))"
         )
     lo, hi = fit.interval(2.0)
+    if lo <= 0:
+        return (
+            f"the spectrum {span} is not self-affine within its uncertainty (H = "
+            f"{fit.hurst:.2f} +- {fit.hurst_stderr:.2f}: the two-sigma band reaches H <= 0, "
+            "where the rms slope grows without bound as finer roughness is added)"
+        )
     if fit.hurst_stderr > MAX_HURST_STDERR and not 0 < lo < hi < 1:
         return (
             f"the spectrum {span} fits a power law poorly (H = {fit.hurst:.2f} +- "
