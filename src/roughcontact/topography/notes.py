@@ -95,10 +95,12 @@ def notes_for(topo, stats, v, good, moduli, check) -> list:
     if missing:
         notes.append(fill_note(missing, int(np.prod(topo.shape))))
     if v.no_extrapolation:
-        notes.append(
-            f"no extrapolated verdict because {v.no_extrapolation}; the verdict holds at the "
-            f"measured scale ({length_text(lam_c)}) only; {_PROCEED}"
+        held = (
+            "the verdict rests on the necessary condition, which needs no extrapolation"
+            if v.scope.startswith("all scales")
+            else f"the verdict holds at the measured scale ({length_text(lam_c)}) only"
         )
+        notes.append(f"no extrapolated verdict because {v.no_extrapolation}; {held}; {_PROCEED}")
     if good is not None:
         notes.extend(good.reasons)
     notes.append(
