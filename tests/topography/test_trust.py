@@ -280,3 +280,22 @@ def test_which_fits_support_an_extrapolation(hurst, stderr, word):
     assert (word in problem) if word else problem == ""
     if word:
         assert "10 nm to 1 um" in problem and f"{hurst:.2f}" in problem
+
+
+def test_criterion_command_takes_the_counter_surface():
+    import json
+
+    from click.testing import CliRunner
+
+    from roughcontact.cli.main import main
+
+    base = ["criterion", "--youngs-modulus", "160GPa", "--poisson", "0.22",
+            "--work-of-adhesion", "0.1", "--rms-slope", "0.1", "--range", "0.5nm",
+            "--d-rep", "10nm", "--json"]  # fmt: skip
+    rigid = json.loads(CliRunner().invoke(main, base).output)
+    r = CliRunner().invoke(main, [*base, "--counter-modulus", "160GPa", "--counter-poisson",
+                                  "0.22"])  # fmt: skip
+    pair = json.loads(r.output)
+    assert pair["contact_modulus"] == pytest.approx(rigid["contact_modulus"] / 2)
+    assert pair["margin"] == pytest.approx(2 * rigid["margin"])  # margin ~ w/E*
+    assert "(1-nu2^2)/E2" in pair["contact_modulus_formula"]
