@@ -114,7 +114,12 @@ def notes_for(topo, stats, v, good, moduli, check) -> list:
             f"data are taken as measured down to the Nyquist wavelength {length_text(lam_c)}"
         )
     notes.append(moduli.text)
-    if v.continuum_limit is not None:
+    if v.continuum_limit is not None and not v.extrapolated:
+        notes.append(
+            f"the continuum criterion (Eq. 10) is outside its validity at the measured scale "
+            f"already, where the measured {v.continuum_reason}: the verdict is the model's"
+        )
+    elif v.continuum_limit is not None:
         notes.append(
             f"the continuum criterion (Eq. 10) is outside its validity below "
             f"{length_text(v.continuum_limit)}, where the extrapolation reaches "

@@ -288,6 +288,9 @@ def _measured_only(stats, measured, a0, reason) -> Verdict:
         now = "sticky" if sticky else "not sticky"
         text = f"{now} at the measured scale ({where}); no extrapolated verdict"
     one = np.array([[measured.margin]])
+    limit, why = _continuum_limit(
+        np.array([lam_c]), np.array([measured.rms_slope]), np.array([measured.rms_curvature]), a0
+    )
     return Verdict(
         sticky=sticky,
         text=text,
@@ -307,6 +310,8 @@ def _measured_only(stats, measured, a0, reason) -> Verdict:
         atomic=None,
         scope=scope,
         no_extrapolation=reason,
+        continuum_limit=limit,
+        continuum_reason=why,
     )
 
 
