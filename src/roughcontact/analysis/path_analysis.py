@@ -19,7 +19,8 @@ with its standard error (``kappa_fit``: a different quantity from ``kappa``, the
 the target area, and labelled differently everywhere). All areas and loads per
 :math:`A_0`; lengths in the path's units.
 
-**Verdict.** One rule (:mod:`.stickiness`): measured sticky ⇔ κ < 0 at the target area,
+**Verdict.** One rule (:mod:`roughcontact.analysis.stickiness`): measured sticky ⇔
+κ < 0 at the target area,
 i.e. :math:`1/\kappa < 0`; predicted: the same rule on Eq. 7's
 :math:`1/\kappa = 1/\kappa_{rep} - 1/\kappa_{att}` (Eq. 10), with the measured κ_rep
 (``predicted_*``) and, for reference, the continuum hard-wall κ_rep = 2
@@ -48,6 +49,7 @@ from .._validate import FIT_MAX_AREA, TARGET_AREA, ParameterError, json_ready
 from ..pathdata import REQUIRED, check_path, read_path
 from .hard_wall_reference import band_width
 from .hard_wall_reference import hard_wall_reference as _hard_wall_reference
+from .hysteresis import hysteresis
 from .path import interpolate_at_area
 from .stickiness import NOT_STICKY, STICKY, is_sticky
 
@@ -70,7 +72,8 @@ class PathAnalysis:
     ``kappa`` is the ratio :math:`h'_{rms}E^*A_{rep}/N` at the target area and
     ``inverse_kappa`` its inverse (the additive quantity over seeds); ``kappa_fit`` the
     slope of :math:`A_{rep}(N)` (a different quantity). ``sticky`` (measured) is
-    :func:`.stickiness.is_sticky` of κ, ``verdict`` its words; the pull-off force
+    :func:`roughcontact.analysis.stickiness.is_sticky` of κ, ``verdict`` its words; the
+    pull-off force
     (``pull_off``, per A0; NaN when the retraction never separated the surfaces) is not
     part of the verdict. ``predicted_*``: the Pastewka–Robbins theory (Eqs. 6, 7, 10,
     with the measured κ_rep and the measured d_rep; ``*_from_curvature`` with d_rep =
@@ -87,7 +90,9 @@ class PathAnalysis:
     ``allow_unconverged`` let unconverged steps into the result; ``unconverged_steps``
     counts them on the analysed branch. ``warnings`` lists conditions under which the
     paper's analysis is not meaningful (too few asperities in contact, a jump inside the
-    interpolation bracket, a wide repulsive band, ...).
+    interpolation bracket, a wide repulsive band, ...). ``dissipated_energy`` (per A0,
+    pressure × length; NaN without a retraction), ``dissipated_energy_bound``, ``jumps`` and
+    ``energy_per_jump``: the whole cycle's hysteresis, :func:`.hysteresis.hysteresis`.
     """
 
     target_area: float
@@ -138,6 +143,11 @@ class PathAnalysis:
     necessary_condition: str = ""
     reliable: bool = True
     unconverged_steps: int = 0
+    # the whole cycle's hysteresis (:mod:`.hysteresis`): -∮N dd per A0, its jump bound, jumps
+    dissipated_energy: float = math.nan
+    dissipated_energy_bound: float = math.nan
+    jumps: int = 0
+    energy_per_jump: float = math.nan
 
     def to_dict(self) -> dict:
         """JSON-ready: non-finite numbers become None."""
@@ -341,6 +351,7 @@ def analyze_path(
     )
     warnings += reference.pop("warnings")
     sticky = bool(is_sticky(kappa))
+    hy = hysteresis(ds)
     return PathAnalysis(
         target_area=target,
         offset=at["offset"],
@@ -376,6 +387,10 @@ def analyze_path(
         verdict=STICKY if sticky else NOT_STICKY,
         reliable=not any(i in bad for i in bracket),
         unconverged_steps=len(bad),
+        dissipated_energy=hy.dissipated_energy,
+        dissipated_energy_bound=hy.energy_uncertainty,
+        jumps=hy.jumps,
+        energy_per_jump=hy.energy_per_jump,
     )
 
 

@@ -48,8 +48,21 @@ from .._validate import FIT_MAX_AREA, TARGET_AREA, click_check, json_safe
     help="Also solve the hard wall on the same surface (kappa_rep_hard_wall, band_width).",
 )
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
+@click.option(
+    "--hysteresis-figure",
+    type=click.Path(dir_okay=False),
+    default=None,
+    help="Also save the load-approach cycle with its dissipated energy (PNG/PDF by suffix).",
+)
 def analyze(
-    path_file, target_area, branch, fit_max_area, allow_unconverged, hard_wall_reference, as_json
+    path_file,
+    target_area,
+    branch,
+    fit_max_area,
+    allow_unconverged,
+    hard_wall_reference,
+    as_json,
+    hysteresis_figure=None,
 ):
     """Measure κ, κ_rep, κ_att, A_rep/A_att, d_rep and pull-off on a path, next to theory.
 
@@ -61,6 +74,9 @@ def analyze(
     for the path's surface and interaction (with the measured κ_rep and d_rep;
     ``*_from_curvature``: d_rep = 4h'/h''; ``*_continuum``: κ_rep = 2).
     kappa_rep_hard_wall(_corrected) and band_width: the hard wall on the same surface.
+    dissipated_energy (-∮N dd per A0, pressure × length in the path's units; NaN without
+    a retraction), dissipated_energy_bound (the trapezoid's bound over the jump steps),
+    jumps and energy_per_jump: the whole approach–retraction cycle's hysteresis.
     Exit code 3 if the steps around the target area did not converge (unless
     --allow-unconverged), 2 on bad input.
     """
@@ -80,6 +96,10 @@ def analyze(
         click.echo(f"roughcontact: error: {err}", err=True)
         sys.exit(3)
     summary = result.to_dict()
+    if hysteresis_figure is not None:
+        from ..plot.hysteresis import hysteresis_figure as _figure
+
+        _figure(ds).savefig(hysteresis_figure, dpi=150)
     for message in summary["warnings"]:
         click.echo(f"roughcontact: warning: {message}", err=True)
     if as_json:
@@ -88,7 +108,8 @@ def analyze(
         click.echo(
             "units: areas per A0, loads N/A0 in units of E*, lengths (d_rep, band_width, "
             "offset) in the path's length unit; kappa = h'rms E* A_rep/N at the target area, "
-            "kappa_fit = the slope of A_rep(N)"
+            "kappa_fit = the slope of A_rep(N); dissipated_energy = -∮N dd per A0 over the "
+            "whole cycle (load unit × length unit)"
         )
         for k, v in summary.items():
             if k != "warnings":

@@ -69,15 +69,23 @@ def _report(r) -> str:
 @click.option("--kappa-rep", default=2.0, show_default=True, type=float, help="Non-adhesive κ_rep.")
 @click.option("--atomic-spacing", default="0.3 nm", show_default=True, help="a0 (necessary cond.).")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object (SI units).")
-def criterion(modulus, youngs_modulus, poisson, counter_modulus, counter_poisson, work,
-              rms_slope, range_, d_rep, rms_curvature, kappa_rep, atomic_spacing,
-              as_json):  # fmt: skip
+@click.option("--rms-height", default=None, help="h_rms, e.g. '20 nm' (Fuller & Tabor's summits).")
+@click.option("--hurst", default=None, type=float, help="H: with the cutoffs, the spectrum.")
+@click.option("--short-cutoff", default=None, help="λs, e.g. '10 nm' (with --hurst).")
+@click.option("--long-cutoff", default=None, help="L, e.g. '10 um' (with --hurst).")
+def criterion(modulus, youngs_modulus, poisson, work, rms_slope, range_, d_rep, rms_curvature,
+              kappa_rep, atomic_spacing, as_json, rms_height=None, hurst=None,
+              short_cutoff=None, long_cutoff=None, counter_modulus=None,
+              counter_poisson=None):  # fmt: skip
     """Stickiness criterion (Pastewka & Robbins 2014, Eq. 10) for real materials.
 
     Give --modulus (E*) or --youngs-modulus with --poisson, and exactly one of --d-rep
     and --rms-curvature. Values take units (Pa, J/m^2, m, 1/m with prefixes); plain
     numbers are SI. The counter-surface is rigid unless --counter-modulus is given:
-    1/E* = (1-nu1^2)/E1 + (1-nu2^2)/E2.
+    1/E* = (1-nu1^2)/E1 + (1-nu2^2)/E2. Then the field's other criteria side by side
+    (Persson & Tosatti, Fuller & Tabor, Dahlquist, Müser; JSON key "criteria"): Persson &
+    Tosatti needs the spectrum (--hurst, --short-cutoff, --long-cutoff), Fuller & Tabor
+    h_rms (from the spectrum or --rms-height); without them they say "no verdict".
     """
     from ..criterion import stickiness_criterion
 
@@ -110,10 +118,37 @@ def criterion(modulus, youngs_modulus, poisson, counter_modulus, counter_poisson
         kappa_rep=kappa_rep,
         atomic_spacing=atomic_spacing,
     )
+    table = _criteria_table(r, rms_height, hurst, short_cutoff, long_cutoff)
     if as_json:
-        d = r.to_dict()
+        d = {**r.to_dict(), "criteria": table}
         if pair is not None:
             d["counter_modulus"], d["contact_modulus_formula"] = pair.counter, pair.text
         click.echo(json.dumps(d))
     else:
-        click.echo(_report(r) + ("" if pair is None else f"\n{pair.text}"))
+        from ..stickiness import format_table
+
+        pair_line = "" if pair is None else f"\n{pair.text}"
+        click.echo(
+            _report(r)
+            + pair_line
+            + "\n\nThe field's criteria side by side:\n"
+            + format_table(table)
+        )
+
+
+def _criteria_table(r, rms_height, hurst, short_cutoff, long_cutoff) -> dict:
+    """:func:`roughcontact.stickiness.criteria_table` on the criterion's SI inputs."""
+    from ..criterion import parse_quantity
+    from ..stickiness import criteria_table, inputs_from_criterion
+
+    def length(v, name):
+        return None if v is None else parse_quantity(v, "length", name)
+
+    inputs = inputs_from_criterion(
+        r,
+        rms_height=length(rms_height, "rms_height"),
+        hurst=hurst,
+        short_cutoff=length(short_cutoff, "short_cutoff"),
+        long_cutoff=length(long_cutoff, "long_cutoff"),
+    )
+    return criteria_table(inputs)

@@ -26,7 +26,10 @@ exists) enter. The claims (equation numbers of the paper):
 * Eq. 10: sticky iff ``1/κ_att > 1/κ_rep``, confusion tables with the measured κ_rep and
   with κ_rep = 2;
 * ``1/κ_att`` linear in ℓa at fixed geometry, and the necessary condition
-  ``ℓa/a0 ≳ 0.5 h'_rms``.
+  ``ℓa/a0 ≳ 0.5 h'_rms``;
+* the field's other stickiness criteria against the measured verdicts, and the energy
+  dissipated per approach–retraction cycle
+  (:mod:`roughcontact.studies.criteria_claims`, which also holds Eq. 10's tables).
 
 Reference: L. Pastewka and M. O. Robbins, PNAS 111, 3298 (2014).
 """
@@ -39,11 +42,20 @@ import numpy as np
 
 from .._validate import ParameterError
 from ..analysis.stickiness import NOT_STICKY, STICKY, UNDECIDED, inverse_mean
-from ..theory.pastewka_robbins import KAPPA_REP, NECESSARY_CONDITION_CONSTANT
-from .aggregate import _mean_interval, aggregate_seeds
+from ..theory.pastewka_robbins import KAPPA_REP
+from .aggregate import _mean_interval, aggregate_seeds  # noqa: F401 (re-exported)
+from .criteria_claims import (  # moved there; names kept here
+    _confusion,  # noqa: F401
+    _task_verdict,  # noqa: F401
+    adhesion_hysteresis,
+    criterion,
+    necessary_condition,
+    stickiness_criteria,
+)
 
 __all__ = [
     "adhesion_and_repulsive_pressure",
+    "adhesion_hysteresis",
     "all_claims",
     "area_load_linearity",
     "attractive_pressure",
@@ -52,6 +64,7 @@ __all__ = [
     "kappa_att_scaling",
     "kappa_rep_by_cutoff",
     "necessary_condition",
+    "stickiness_criteria",
     "thin_rim_theory",
 ]
 
@@ -413,62 +426,6 @@ def thin_rim_theory(ds, *, confidence=0.95) -> dict:
     return out
 
 
-def _confusion(measured, predicted) -> dict:
-    table = {m: {p: 0 for p in VERDICTS} for m in VERDICTS}
-    for m, p in zip(measured, predicted, strict=True):
-        if m in table and p in table[m]:
-            table[m][p] += 1
-    decided = [
-        (m, p)
-        for m, p in zip(measured, predicted, strict=True)
-        if m != UNDECIDED and p != UNDECIDED
-    ]
-    agree = sum(m == p for m, p in decided)
-    return {"table": table, "decided": len(decided), "agree": agree}
-
-
-def _task_verdict(sticky) -> str:
-    if sticky is None or (isinstance(sticky, float) and math.isnan(sticky)):
-        return UNDECIDED
-    return STICKY if bool(sticky) else NOT_STICKY
-
-
-def criterion(ds, *, confidence=0.95) -> dict:
-    r"""Eq. 10: sticky iff ``1/κ_att > 1/κ_rep``; confusion tables.
-
-    Per parameter set (seeds combined through 1/κ,
-    :func:`~roughcontact.studies.aggregate.aggregate_seeds`): the measured verdict
-    against the predicted one with the measured κ_rep and with κ_rep = 2; and per task
-    (one seed each: "sticky"/"not sticky", never undecided).
-    """
-    rows = aggregate_seeds(ds, confidence=confidence)
-    rows = [r for r in rows if r["analysed"]]
-    measured = [r["verdict"] for r in rows]
-    out = {
-        "parameter_sets": len(rows),
-        "measured_kappa_rep": _confusion(measured, [r["predicted_verdict"] for r in rows]),
-        "continuum_kappa_rep": _confusion(
-            measured, [r["predicted_verdict_continuum"] for r in rows]
-        ),
-    }
-    tasks = _analysed(ds)
-    per_task = [_task_verdict(_task(ds, "sticky")[i]) for i in tasks]
-    for key, name in (
-        ("predicted_sticky", "per_task_measured_kappa_rep"),
-        ("predicted_sticky_continuum", "per_task_continuum_kappa_rep"),
-    ):
-        v = _task(ds, key)
-        if v is not None:
-            out[name] = _confusion(per_task, [_task_verdict(v[i]) for i in tasks])
-    out["disagreements"] = [
-        {k: r.get(k) for k in DISAGREEMENT_KEYS}
-        for r in rows
-        if UNDECIDED not in (r["verdict"], r["predicted_verdict"])
-        and r["verdict"] != r["predicted_verdict"]
-    ]
-    return out
-
-
 def kappa_att_scaling(ds, *, confidence=0.95) -> dict:
     r"""``1/κ_att`` against ℓa at fixed geometry: the exponent of κ_att ∝ ℓa^β.
 
@@ -497,48 +454,6 @@ def kappa_att_scaling(ds, *, confidence=0.95) -> dict:
     return out
 
 
-def necessary_condition(ds, *, confidence=0.95) -> dict:
-    r"""``ℓa/a0 ≳ 0.5 h'_rms`` (unrounded: ``c/κ_rep`` with c = 0.9717, κ_rep = 2).
-
-    Per parameter set: whether ℓa/a0 reaches ``(c/2) h'_rms`` (the nominal slope), and
-    the measured verdict; counts of sticky sets that violate it (the paper: none). The
-    condition assumes Δr ≈ a0 ≤ δh; ``applicable`` counts the sets where the analysis
-    found that true.
-    """
-    rows = [r for r in aggregate_seeds(ds, confidence=confidence) if r["analysed"]]
-    bound = NECESSARY_CONDITION_CONSTANT / KAPPA_REP
-    a0 = _task(ds, "pixel_size")
-    a0 = float(np.nanmedian(a0)) if a0 is not None else 1.0
-    table = {"met": dict.fromkeys(VERDICTS, 0), "not_met": dict.fromkeys(VERDICTS, 0)}
-    for r in rows:
-        met = r["adhesion_length"] / a0 >= bound * r["rms_slope"]
-        table["met" if met else "not_met"][r["verdict"]] += 1
-    tasks = _analysed(ds)
-    note = (
-        np.asarray(ds["necessary_condition"].values)[tasks]
-        if "necessary_condition" in ds.variables
-        else []
-    )
-    applicable = int(sum(1 for n in note if not str(n).startswith("not applicable")))
-    la, dr = _task(ds, "adhesion_length"), _task(ds, "range")
-    ranges = (
-        {
-            str(lv): float(np.nanmedian(dr[tasks][la[tasks] == lv]) / a0)
-            for lv in _levels(ds, "adhesion_length", tasks)
-        }
-        if dr is not None
-        else {}
-    )
-    return {
-        "bound": bound,
-        "table": table,
-        "sticky_without_condition": table["not_met"][STICKY],
-        "applicable_tasks": applicable,
-        "tasks": int(tasks.size),
-        "range_over_a0": ranges,
-    }
-
-
 def all_claims(ds, *, confidence=0.95, target_area=0.01) -> dict:
     """Every claim of this module on ``ds``, by name (NaN where a number does not exist;
     :func:`roughcontact._validate.json_safe` makes it JSON)."""
@@ -556,4 +471,6 @@ def all_claims(ds, *, confidence=0.95, target_area=0.01) -> dict:
         "eq10_criterion": criterion(ds, confidence=confidence),
         "kappa_att_scaling": kappa_att_scaling(ds, confidence=confidence),
         "necessary_condition": necessary_condition(ds, confidence=confidence),
+        "stickiness_criteria": stickiness_criteria(ds, confidence=confidence),
+        "adhesion_hysteresis": adhesion_hysteresis(ds, confidence=confidence),
     }

@@ -50,6 +50,25 @@ def _analysis_keys():
     return [f.name for f in fields], {f.name for f in fields if f.type in (str, "str")}
 
 
+def _fill_hysteresis(data, records) -> None:
+    """Hysteresis of tasks analysed before the analysis had it: from their collected steps."""
+    from ..analysis.hysteresis import hysteresis_from_steps
+
+    names = ("dissipated_energy", "dissipated_energy_bound", "jumps", "energy_per_jump")
+    for i, (status, _, _, steps) in enumerate(records):
+        if status != "done" or "dissipated_energy" not in data:
+            continue
+        if not math.isnan(data["dissipated_energy"][1][i]) or "offset" not in steps:
+            continue
+        hy = hysteresis_from_steps(
+            steps["offset"], steps["load"], steps["branch"], steps.get("jump"),
+            steps.get("converged"),
+        )  # fmt: skip
+        values = (hy.dissipated_energy, hy.energy_uncertainty, hy.jumps, hy.energy_per_jump)
+        for name, v in zip(names, values, strict=True):
+            data[name][1][i] = v
+
+
 def _number(value) -> float:
     if value is None:
         return math.nan
@@ -196,6 +215,7 @@ def collect_study(out_dir, *, include_timings: bool = True):
             data[key] = ("task", np.array([str(a.get(key) or "") for a in analyses]))
         else:
             data[key] = ("task", np.array([_number(a.get(key)) for a in analyses]))
+    _fill_hysteresis(data, records)
     data["analysis_warnings"] = (
         "task",
         np.array(["; ".join(a.get("warnings", [])) for a in analyses]),

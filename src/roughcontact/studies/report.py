@@ -29,6 +29,7 @@ import numpy as np
 from .._io import write_bytes_atomic, write_netcdf_atomic
 from .._validate import json_safe
 from . import claims as _claims
+from . import criteria_claims as _cc
 from .collect import STEP_VARIABLES, TIMINGS, read_collected
 
 __all__ = ["render_report", "write_report"]
@@ -360,7 +361,7 @@ def _claim_lines(c) -> list[str]:
         + ").",
         "",
     ]
-    return L
+    return L + _cc.report_lines(c)
 
 
 def _figure_lines(figures) -> list[str]:
