@@ -119,3 +119,29 @@ def test_path_records_the_units(tmp_path):
         assert ds.attrs["length_unit"] == "m"
         assert ds.attrs["surface_channel"] == "Scan forward (Z-Axis)"
         assert float(ds.attrs["pixel_size"]) == pytest.approx(20e-6 / 256)
+
+
+@pytest.mark.parametrize("command", ["contact", "path"])
+def test_scan_readers_share_the_missing_data_policy(tmp_path, command):
+    """contact and path fill a few missing points (said on stderr), refuse many with the
+    fraction and --fill-missing, and fill them when asked -- as stick does."""
+    rng = np.random.default_rng(1)
+    h = rng.standard_normal((32, 32))
+    h[5, 7] = np.nan  # 1 of 1024
+    few = tmp_path / "few.npy"
+    np.save(few, h)
+    h[:8] = np.nan  # 256 of 1024
+    many = tmp_path / "many.npy"
+    np.save(many, h)
+    tail = ["--load", "0.01"] if command == "contact" else ["--loads", "0.001", "0.002", "0.001"]
+    if command == "path":
+        tail += ["-o", str(tmp_path / "out.nc")]
+    runner = CliRunner()
+    r = runner.invoke(main, [command, str(few), *tail])
+    assert r.exit_code == 0, r.output
+    assert "note: filled 1 of 1024 missing points" in r.output  # stderr, mixed in here
+    r = runner.invoke(main, [command, str(many), *tail])
+    assert r.exit_code == 2 and "25.0% of the points" in r.output and "--fill-missing" in r.output
+    r = runner.invoke(main, [command, str(many), *tail, "--fill-missing"])
+    assert r.exit_code == 0, r.output
+    assert "25.000% of the scan" in r.output

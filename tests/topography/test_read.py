@@ -363,12 +363,13 @@ def test_missing_points_refused_or_filled(tmp_path):
     data[3:5, 2:6] = np.nan  # inside the scan: a plane is harmonic, kept exactly
     np.save(tmp_path / "holes.npy", data)
     one_line_error(
-        lambda: load_topography(tmp_path / "holes.npy"), "holes.npy", "8 of 72", "11.111%"
-    )
+        lambda: load_topography(tmp_path / "holes.npy"), "holes.npy", "8 of 72", "11.1%",
+        "--fill-missing",
+    )  # fmt: skip
     topo = load_topography(tmp_path / "holes.npy", fill_missing=True)
     np.testing.assert_allclose(topo.heights, plane, rtol=0, atol=1e-12)
     assert topo.info["missing_data"] == {
-        "points": 8, "fraction": 8 / 72, "filled": "harmonic"
+        "points": 8, "fraction": 8 / 72, "filled": "harmonic", "asked": True
     }  # fmt: skip
 
 
@@ -429,7 +430,7 @@ def test_masked_points_refused_or_filled(stand_in):
     mask = np.zeros(plane.shape, dtype=bool)
     mask[2:4, 3:5] = True
     path = stand_in(_Reader(np.ma.masked_array(np.where(mask, -1e9, plane), mask)))
-    one_line_error(lambda: load_topography(path), "4 of 72", "5.556%", "fill_missing=True")
+    one_line_error(lambda: load_topography(path), "4 of 72", "5.6%", "fill_missing=True")
     topo = load_topography(path, fill_missing=True)
     np.testing.assert_allclose(topo.heights, plane * 1e-9, rtol=1e-12)
     assert topo.pixel_size == pytest.approx((1e-9, 1e-9))

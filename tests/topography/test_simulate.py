@@ -113,8 +113,9 @@ def test_per_seed_kappa_is_the_direct_analysis_of_the_same_path(strong):
     heights = rc.self_affine((64, 64), hurst=surface["hurst"], rms_slope=surface["rms_slope"],
                              short_cutoff=4.0, long_cutoff=32.0, seed=1)  # fmt: skip
     np.testing.assert_array_equal(heights, run.heights)
-    law = rc.SmoothLJ93.from_adhesion_length(0.05)
-    assert sim.interaction["range"] == pytest.approx(math.sqrt(24 * A0 * 0.05 * A0), rel=1e-12)
+    # the range asked for (stick's default 0.5 nm), on a hard wall (Maugis-Dugdale)
+    law = rc.MaugisDugdale(work_of_adhesion=0.05, range=0.5 * NM / A0)
+    assert sim.interaction["range"] == pytest.approx(0.5 * NM, rel=1e-12)
     assert sim.interaction["range_over_a0"] == pytest.approx(law.range)
     lead = relative_offsets(heights, sim.path["lead_in"], "length", law)
     body = relative_offsets(heights, sim.path["bearing_area"], "bearing_area", law)
@@ -170,7 +171,7 @@ def test_json_has_the_simulation_and_a_unit_for_each_of_its_numbers(strong):
     paths = set(leaves(sim, "simulation"))
     assert "simulation.seeds.kappa" in paths and "simulation.interaction.range" in paths
     assert not paths - set(UNITS), paths - set(UNITS)  # every number its own unit
-    assert "not the interaction range" in " ".join(sim["notes"])
+    assert "range 0.5 nm" in " ".join(sim["notes"])
     assert stick(_scan(), modulus=E_STAR, work_of_adhesion=_work(0.05)).to_dict()[
         "simulation"
     ] is None  # fmt: skip
@@ -202,9 +203,9 @@ def test_bad_options_are_one_line_parameter_errors():
         ({"simulate_size": 64.5}, "simulate_size"),
         ({"simulate_seeds": 0}, "simulate_seeds"),
         ({"simulate_seeds": 33}, "simulate_seeds"),
-        ({"work_of_adhesion": _work(0.2)}, "l_a/a0"),
+        ({"work_of_adhesion": _work(200)}, "l_a/a0"),
         ({"work_of_adhesion": _work(1e-6)}, "l_a/a0"),
-        ({"work_of_adhesion": "50 mJ/m^2", "modulus": "10 MPa"}, "l_a/a0"),  # rubber: 16.7
+        ({"work_of_adhesion": "50 mJ/m^2", "modulus": "1 MPa"}, "l_a/a0"),  # 167 > 100
     ]
     for kwargs, word in cases:
         args = {"modulus": E_STAR, "work_of_adhesion": _work(0.01), "simulate_size": 64}

@@ -55,6 +55,12 @@ def _report(r) -> str:
 @click.option("--modulus", default=None, help="Contact modulus E* = E/(1-nu^2), e.g. '10 MPa'.")
 @click.option("--youngs-modulus", default=None, help="Young's modulus E (with --poisson).")
 @click.option("--poisson", default=None, help="Poisson ratio nu (with --youngs-modulus).")
+@click.option(
+    "--counter-modulus",
+    default=None,
+    help="Counter-surface's E (with --counter-poisson) or E/(1-nu^2); default rigid.",
+)
+@click.option("--counter-poisson", default=None, help="Counter-surface's Poisson ratio.")
 @click.option("--work-of-adhesion", "work", required=True, help="w, e.g. '50 mJ/m^2'.")
 @click.option("--rms-slope", required=True, help="h'rms (dimensionless).")
 @click.option("--range", "range_", required=True, help="Interaction range Δr, e.g. '0.5 nm'.")
@@ -69,15 +75,17 @@ def _report(r) -> str:
 @click.option("--long-cutoff", default=None, help="L, e.g. '10 um' (with --hurst).")
 def criterion(modulus, youngs_modulus, poisson, work, rms_slope, range_, d_rep, rms_curvature,
               kappa_rep, atomic_spacing, as_json, rms_height=None, hurst=None,
-              short_cutoff=None, long_cutoff=None):  # fmt: skip
+              short_cutoff=None, long_cutoff=None, counter_modulus=None,
+              counter_poisson=None):  # fmt: skip
     """Stickiness criterion (Pastewka & Robbins 2014, Eq. 10) for real materials.
 
     Give --modulus (E*) or --youngs-modulus with --poisson, and exactly one of --d-rep
     and --rms-curvature. Values take units (Pa, J/m^2, m, 1/m with prefixes); plain
-    numbers are SI. Then the field's other criteria side by side (Persson & Tosatti,
-    Fuller & Tabor, Dahlquist, Müser; JSON key "criteria"): Persson & Tosatti needs the
-    spectrum (--hurst, --short-cutoff, --long-cutoff), Fuller & Tabor h_rms (from the
-    spectrum or --rms-height); without them they say "no verdict".
+    numbers are SI. The counter-surface is rigid unless --counter-modulus is given:
+    1/E* = (1-nu1^2)/E1 + (1-nu2^2)/E2. Then the field's other criteria side by side
+    (Persson & Tosatti, Fuller & Tabor, Dahlquist, Müser; JSON key "criteria"): Persson &
+    Tosatti needs the spectrum (--hurst, --short-cutoff, --long-cutoff), Fuller & Tabor
+    h_rms (from the spectrum or --rms-height); without them they say "no verdict".
     """
     from ..criterion import stickiness_criterion
 
@@ -91,6 +99,13 @@ def criterion(modulus, youngs_modulus, poisson, work, rms_slope, range_, d_rep, 
         raise ParameterError("--poisson goes with --youngs-modulus")
     if (d_rep is None) == (rms_curvature is None):
         raise ParameterError("give exactly one of --d-rep and --rms-curvature")
+    pair = None
+    if counter_modulus is not None or counter_poisson is not None:
+        from ..moduli import composite_modulus
+
+        body = (modulus, None) if modulus is not None else (youngs_modulus, poisson)
+        pair = composite_modulus(*body, counter_modulus, counter_poisson)
+        modulus, youngs_modulus, poisson = pair.contact_modulus, None, None
     r = stickiness_criterion(
         contact_modulus=modulus,
         youngs_modulus=youngs_modulus,
@@ -105,11 +120,20 @@ def criterion(modulus, youngs_modulus, poisson, work, rms_slope, range_, d_rep, 
     )
     table = _criteria_table(r, rms_height, hurst, short_cutoff, long_cutoff)
     if as_json:
-        click.echo(json.dumps({**r.to_dict(), "criteria": table}))
+        d = {**r.to_dict(), "criteria": table}
+        if pair is not None:
+            d["counter_modulus"], d["contact_modulus_formula"] = pair.counter, pair.text
+        click.echo(json.dumps(d))
     else:
         from ..stickiness import format_table
 
-        click.echo(_report(r) + "\n\nThe field's criteria side by side:\n" + format_table(table))
+        pair_line = "" if pair is None else f"\n{pair.text}"
+        click.echo(
+            _report(r)
+            + pair_line
+            + "\n\nThe field's criteria side by side:\n"
+            + format_table(table)
+        )
 
 
 def _criteria_table(r, rms_height, hurst, short_cutoff, long_cutoff) -> dict:

@@ -246,10 +246,10 @@ def _surface_file_options(f):
             help="Least-squares mean, tilt or 2nd-order polynomial removed from SURFACE.",
         ),
         click.option(
-            "--fill-missing",
-            is_flag=True,
-            help="Fill missing points of an instrument file (harmonic interpolation) "
-            "instead of refusing it.",
+            "--fill-missing/--no-fill-missing",
+            default=None,
+            help="Fill missing points of an instrument file of any fraction (harmonic "
+            "interpolation) / refuse any. Default: fill up to 1 % (said on stderr), refuse more.",
         ),
     ]
     for o in reversed(opts):
@@ -445,11 +445,18 @@ def _load_surface(surface_file, channel, detrend, fill_missing, pixel_size):
     from ..topography import detrend as remove_trend
 
     if file_kind(surface_file) != "instrument":
-        h = load_heights(surface_file, channel=channel)
+        try:
+            h = load_heights(surface_file, channel=channel)
+        except ParameterError as err:  # NaN points: the missing-data policy of every reader
+            if "found NaN" not in str(err):
+                raise
+            h = np.array(_filled(load_topography(surface_file, fill_missing=fill_missing)).heights)
+            if h.ndim != 2:
+                raise ParameterError(f"{err} (and a line scan: expected a 2D height map)") from None
         if detrend != "none":
             h = np.array(remove_trend(Topography(h, pixel_size), detrend).heights)
         return h, pixel_size, None
-    topo = load_topography(surface_file, channel=channel, fill_missing=fill_missing)
+    topo = _filled(load_topography(surface_file, channel=channel, fill_missing=fill_missing))
     if topo.dim != 2:
         raise ParameterError(
             f"SURFACE {str(surface_file)!r} is a line scan of {topo.shape[0]} points; "
@@ -471,6 +478,15 @@ def _load_surface(surface_file, channel, detrend, fill_missing, pixel_size):
         )
     topo = remove_trend(topo, detrend)
     return np.array(topo.heights), px, topo.to_dict()
+
+
+def _filled(topo):
+    """``topo``, after saying on stderr what was filled (the line every scan reader prints)."""
+    if topo.info.get("missing_data"):
+        from ..topography.missing import fill_note
+
+        click.echo(f"note: {fill_note(topo.info['missing_data'], topo.heights.size)}", err=True)
+    return topo
 
 
 def _describe_surface(s) -> str:

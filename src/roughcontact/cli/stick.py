@@ -17,7 +17,7 @@ import click
 
 from .._validate import DPI, click_check
 from ..topography.prepare import DETREND_MODES
-from ..topography.simulate import ADHESION_RANGE, SEEDS, SIZE
+from ..topography.simulate import ADHESION_RANGE_GIVEN, SEEDS, SIZE
 
 __all__ = ["stick"]
 
@@ -46,13 +46,21 @@ def _pixel_size(text):
     "--poisson", default=None, help="Poisson ratio: --modulus is then E, E* = E/(1-nu^2)."
 )
 @click.option(
+    "--counter-modulus",
+    default=None,
+    help="The counter-surface's Young's modulus (with --counter-poisson) or E/(1-nu^2); "
+    "default: rigid. 1/E* = (1-nu1^2)/E1 + (1-nu2^2)/E2.",
+)
+@click.option("--counter-poisson", default=None, help="The counter-surface's Poisson ratio.")
+@click.option(
     "--range", "range_", default="0.5 nm", show_default=True, help="Interaction range Δr."
 )
 @click.option("--tip-radius", default=None, help="Probe radius (reliability cutoff), e.g. '20 nm'.")
 @click.option(
     "--reliability-cutoff",
     default=None,
-    help="Shortest reliable wavelength, instead of --tip-radius, e.g. '50 nm'.",
+    help="Shortest reliable wavelength, instead of --tip-radius, e.g. '50 nm' (then no "
+    "search for a noise floor or resolution limit in the PSD).",
 )
 @click.option(
     "--detrend",
@@ -84,12 +92,18 @@ def _pixel_size(text):
 )
 @click.option("--periodic", is_flag=True, help="The scan is one period of a periodic surface.")
 @click.option(
+    "--fill-missing/--no-fill-missing",
+    default=None,
+    help="Fill missing points of any fraction (harmonic interpolation) / refuse any. "
+    "Default: fill up to 1 % of the scan, refuse more.",
+)
+@click.option(
     "--fit-range",
     nargs=2,
     default=None,
     metavar="SHORT LONG",
-    help="Wavelengths of the Hurst fit, e.g. '10nm 1um' (default: 4 pixels or the "
-    "reliability cutoff to a quarter of the scan).",
+    help="Wavelengths of the Hurst fit, e.g. '10nm 1um' (default: 4 pixels, the "
+    "reliability cutoff or the instrument's limit found in the PSD, to a quarter of the scan).",
 )
 @click.option(
     "--hurst-sigmas",
@@ -127,7 +141,7 @@ def _pixel_size(text):
     is_flag=True,
     help="Also run the paper's simulation on synthetic surfaces continuing the scan's "
     "spectrum to a0 (seconds to minutes; needs l_a/a0 = w/(E* a0) in "
-    f"{ADHESION_RANGE.accepted[3:]}).",
+    f"{ADHESION_RANGE_GIVEN.accepted[3:]}).",
 )
 @click.option(
     "--simulate-size",
@@ -146,24 +160,28 @@ def _pixel_size(text):
     help=f"Number of synthetic surfaces ({SEEDS.accepted}).",
 )
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object (SI units).")
-def stick(scan, channel, modulus, work, poisson, range_, tip_radius, reliability_cutoff,
-          detrend, kappa_rep, atomic_spacing, pixel_size, height_unit, periodic, fit_range,
-          hurst_sigmas, out_dir, formats, dpi, simulate, simulate_size, simulate_seeds,
-          as_json):  # fmt: skip
+def stick(scan, channel, modulus, work, poisson, counter_modulus, counter_poisson, range_,
+          tip_radius, reliability_cutoff, detrend, kappa_rep, atomic_spacing, pixel_size,
+          height_unit, periodic, fill_missing, fit_range, hurst_sigmas, out_dir, formats, dpi,
+          simulate, simulate_size, simulate_seeds, as_json):  # fmt: skip
     """Is the surface in SCAN sticky? (Pastewka & Robbins 2014, Eq. 10.)
 
     SCAN is an instrument file (AFM, interferometer, stylus profilometer; read with
     SurfaceTopography), or a .npy/text file with --pixel-size. The rms slope and
     curvature are measured down to the reliability cutoff (--tip-radius; else the
-    Nyquist wavelength) and extrapolated with the fitted Hurst exponent down to
+    Nyquist wavelength, or the instrument's resolution limit or noise floor found in the
+    PSD) and extrapolated with the Hurst exponent fitted above it down to
     --atomic-spacing. The verdict is "sticky" or "not sticky" when it holds for every
     smallest roughness scale in between (and every H within its uncertainty), else
-    "depends on roughness below X".
+    "depends on roughness below X". A spectrum that is not self-affine there (H outside
+    (0, 1), or a poor fit) gets the verdict at the measured scale only. Every note is
+    printed. Up to 1 % missing points are filled (said so); more need --fill-missing.
+    The counter-surface is rigid unless --counter-modulus is given.
 
     --simulate adds the measured answer of Pastewka & Robbins' simulation: synthetic
     surfaces with the scan's H and its h'rms extrapolated to 4 a0, the paper's 9-3 wall
-    (range sqrt(24 a0 l_a), not --range), kappa at 1 % contact over the seeds. It takes
-    seconds (--simulate-size 64) to minutes (256, the default).
+    with the --range asked for (its stiffness from w = k Δr²/12), kappa at 1 % contact
+    over the seeds. It takes seconds (--simulate-size 64) to minutes (256, the default).
     """
     from ..topography.report import summary, write_report
     from ..topography.verdict import stick as run
@@ -191,6 +209,9 @@ def stick(scan, channel, modulus, work, poisson, range_, tip_radius, reliability
         simulate_size=simulate_size,
         simulate_seeds=simulate_seeds,
         simulate_progress=_progress if simulate and sys.stderr.isatty() else None,
+        fill_missing=fill_missing,
+        counter_modulus=counter_modulus,
+        counter_poisson=counter_poisson,
     )
     if out_dir is not None:
         write_report(result, out_dir, formats=formats, dpi=dpi)

@@ -17,10 +17,11 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import ParameterError
-from ._grid import harmonic_fill, uniform_positions
+from ._grid import uniform_positions
+from .missing import MISSING_FILL_MAX, missing_policy
 from .topography import Topography, length_factor, pixel_sizes
 
-__all__ = ["file_kind", "load_topography"]
+__all__ = ["MISSING_FILL_MAX", "file_kind", "load_topography", "missing_policy"]
 
 _INSTALL = 'pip install "roughcontact[topography]"'
 _ACCEPTED = (
@@ -76,7 +77,7 @@ def load_topography(
     periodic=False,
     pixel_size=None,
     height_unit=None,
-    fill_missing=False,
+    fill_missing=None,
     resample=None,
 ) -> Topography:
     """Read a measured topography: heights and pixel size in metres, with the metadata.
@@ -109,11 +110,13 @@ def load_topography(
         Unit of the heights of a ``.npy``/text file (with ``pixel_size``; default
         ``"m"``), or of an instrument file that stores none: ``"m"``, ``"mm"``,
         ``"um"``, ``"nm"``, ``"A"``, ``"pm"``, ...
-    fill_missing : bool
+    fill_missing : bool or None
         Missing points (NaN, or masked by the reader: e.g. invalid interferometer
-        pixels) are refused by default, with their count and fraction. True fills them
-        by harmonic interpolation (each takes the mean of its neighbours; a plane is
-        kept exactly) and records ``info["missing_data"]``.
+        pixels): None (default) fills up to :data:`MISSING_FILL_MAX` (1 %) of the scan by
+        harmonic interpolation (each takes the mean of its neighbours; a plane is kept
+        exactly) and refuses more, naming the fraction; True fills any fraction; False
+        refuses any (see :mod:`roughcontact.topography.missing`). A filling is recorded
+        in ``info["missing_data"]``.
     resample : bool or None
         Non-uniformly sampled line scans (e.g. stylus profiles): True interpolates
         linearly onto as many uniformly spaced points, on the uniform grid fitted to the
@@ -134,7 +137,7 @@ def load_topography(
     ParameterError
         One line naming the file: missing, corrupt or of an unknown format; an unknown
         channel (listing the available ones) or a channel that holds no heights;
-        missing points without ``fill_missing``; SurfaceTopography not installed.
+        more missing points than ``fill_missing`` allows; SurfaceTopography not installed.
     """
     from ..surfaces.io import _existing_file
 
@@ -188,25 +191,9 @@ def _read_plain(p, kind, channel, periodic, pixel_size, height_unit, fill_missin
 
 
 def _missing(p, data, fill_missing, periodic, info):
-    """Refuse or fill the missing points (NaN or masked), recording what was done."""
-    missing = np.ma.getmaskarray(data) | ~np.isfinite(np.ma.getdata(data))
-    values = np.array(np.ma.getdata(data), dtype=np.float64)
-    count = int(missing.sum())
-    if count == 0:
-        return values, info
-    fraction = count / missing.size
-    if not fill_missing:
-        raise ParameterError(
-            f"path {str(p)!r}: {count} of {missing.size} points ({fraction:.3%}) are "
-            "missing (NaN or masked by the instrument); fill_missing=True (CLI: "
-            "--fill-missing) fills them by harmonic interpolation"
-        )
-    if count == missing.size:
-        raise ParameterError(f"path {str(p)!r}: every point is missing; no heights to read")
-    values = harmonic_fill(values, missing, periodic=periodic)
-    info = dict(info)
-    info["missing_data"] = {"points": count, "fraction": fraction, "filled": "harmonic"}
-    return values, info
+    """Fill or refuse the missing points (NaN or masked): :mod:`.missing`'s policy."""
+    values, new_info = missing_policy(f"path {str(p)!r}", data, fill_missing, periodic, info)
+    return values, info if new_info is None else new_info
 
 
 def _record(heights, pixel_size, periodic, channel, p, unit, info):
@@ -413,8 +400,8 @@ def _resample(p, x, heights, resample, fill_missing, info):
     known = ~(np.ma.getmaskarray(heights) | ~np.isfinite(np.ma.getdata(heights)))
     info = dict(info)
     if not known.all():
-        if not fill_missing:
-            _missing(p, heights, False, False, info)  # raises: count and fraction
+        if not fill_missing and (fill_missing is not None or (~known).mean() > MISSING_FILL_MAX):
+            _missing(p, heights, fill_missing, False, info)  # raises: count and fraction
         if known.sum() < 2:
             raise ParameterError(f"path {str(p)!r}: fewer than 2 points are defined")
         count = int((~known).sum())
@@ -422,6 +409,7 @@ def _resample(p, x, heights, resample, fill_missing, info):
             "points": count,
             "fraction": count / known.size,
             "filled": "linear (with the resampling)",
+            "asked": bool(fill_missing),
         }
     values = np.asarray(np.ma.getdata(heights), dtype=np.float64)
     # the fitted grid may overhang the first or last position by a fraction of a step:

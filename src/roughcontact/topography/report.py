@@ -21,7 +21,9 @@ from pathlib import Path
 import numpy as np
 
 from .._validate import DPI, ParameterError
-from .verdict import StickResult, _length_text
+from ._text import length_text as _length_text
+from ._text import range_text
+from .result import StickResult
 
 __all__ = [
     "FIGURES",
@@ -42,28 +44,45 @@ CUTOFF = {"color": "0.4", "lw": 1, "linestyle": ":"}
 
 
 def summary(result: StickResult) -> list[str]:
-    """The verdict in a few lines of text (SI values with readable prefixes)."""
+    """The verdict and every note, in lines of text (SI values with readable prefixes)."""
     s, v, fit = result.statistics, result.verdict, result.statistics.fit
     c = v.centre
-    lam_c, a0 = s.measured_scale, float(v.scales[-1])
-    lo, hi = v.margin_atomic_range
-    lines = [
-        f"verdict: {v.text}",
-        f"margin kappa_rep/kappa_att (> 1 sticks): {v.margin:.3g} measured (roughness down "
-        f"to {_length_text(lam_c)}), {v.margin_atomic:.3g} extrapolated to "
-        f"{_length_text(a0)} ({lo:.3g}-{hi:.3g} within H = {v.hurst[0]:.2f}-{v.hurst[-1]:.2f})",
+    lam_c, a0 = s.measured_scale, float(result.inputs["atomic_spacing"])
+    lines = [f"verdict: {v.text}"]
+    first = [n for n in result.notes if n.startswith("no extrapolated verdict")]
+    lines += first
+    lines.append(
         f"measured down to {_length_text(lam_c)}: h'rms = {s.rms_slope:.3g}, "
-        f"h''rms = {s.rms_curvature:.3g} 1/m, d_rep = {_length_text(s.d_rep)}",
-        f"extrapolated down to {_length_text(a0)} with H = {fit.hurst:.2f} +- "
-        f"{fit.hurst_stderr:.2f}: h'rms = {v.slopes[c, -1]:.3g}, "
-        f"h''rms = {v.curvatures[c, -1]:.3g} 1/m, "
-        f"d_rep = {_length_text(4 * v.slopes[c, -1] / v.curvatures[c, -1])}",
-    ]
-    if v.sticky is None:
+        f"h''rms = {s.rms_curvature:.3g} 1/m, d_rep = {_length_text(s.d_rep)}, margin "
+        f"kappa_rep/kappa_att = {v.margin:.3g} (> 1 sticks)"
+    )
+    if v.extrapolated and v.scales.size > 1:
+        lo, hi = v.margin_atomic_range
+        band = range_text(v.hurst[0], v.hurst[-1], ".2f")
+        lines.append(
+            f"extrapolated down to {_length_text(a0)} with H = {fit.hurst:.2f} +- "
+            f"{fit.hurst_stderr:.2f}: h'rms = {v.slopes[c, -1]:.3g}, "
+            f"h''rms = {v.curvatures[c, -1]:.3g} 1/m, "
+            f"d_rep = {_length_text(4 * v.slopes[c, -1] / v.curvatures[c, -1])}, margin "
+            f"{v.margin_atomic:.3g} ({range_text(lo, hi)} within H = {band})"
+        )
+    good = result.good_range
+    lines.append(
+        f"fit range: {_length_text(fit.scale_range[0])} to {_length_text(fit.scale_range[1])}"
+        + (
+            ""
+            if good is None
+            else f" (the instrument's limits: good data from {_length_text(good.short)})"
+            if good.reasons
+            else " (no resolution limit or noise floor found in the PSD)"
+        )
+    )
+    if v.sticky is None and v.depends_below is not None:
         lines.append(
             f"the verdict depends on roughness below {_length_text(v.depends_below)}, "
             f"below the measured {_length_text(lam_c)}: measure finer or with a sharper tip"
         )
+    lines += [f"note: {n}" for n in result.notes if n not in first]
     if result.simulation is not None:
         lines += simulation_summary(result.simulation)
     return lines
@@ -78,16 +97,20 @@ def simulation_summary(sim) -> list[str]:
         for r in sim.runs
     )
     pull = sim.pull_off_pressure
+    how = (
+        f"over {inv.n} of {len(sim.runs)} seeds{interval}"
+        if inv.n
+        else f"({len(sim.runs)} seeds, none analysed at 1 %: see the notes)"
+    )
     return [
-        f"simulated: {sim.verdict} over {inv.n} of {len(sim.runs)} seeds{interval}; "
-        f"Eq. 10 on the same surfaces: {sim.predicted_verdict}",
+        f"simulated: {sim.verdict} {how}; Eq. 10 on the same surfaces: {sim.predicted_verdict}",
         f"simulation: {s['size']}^2 sites of a0 = {_length_text(s['atomic_spacing'])}, "
         f"lambda_s = {s['short_cutoff_over_a0']:g} a0, H = {s['hurst']:.2f}, "
-        f"h'rms = {s['rms_slope']:.3g}; 9-3 wall l_a/a0 = {i['adhesion_length_over_a0']:.3g}, "
-        f"range sqrt(24 a0 l_a) = {_length_text(i['range'])} (not Delta_r)",
+        f"h'rms = {s['rms_slope']:.3g}; wall l_a/a0 = {i['adhesion_length_over_a0']:.3g}, "
+        f"range {_length_text(i['range'])} ({i.get('parametrisation', '')})",
         f"per seed kappa (kappa_rep, kappa_att) at A_rep = 1 %: {seeds}; pull-off pressure "
         + (f"{pull:.3g} Pa" if np.isfinite(pull) else "not measured"),
-    ]
+    ] + [f"note: {n}" for n in sim.notes]
 
 
 # --------------------------------------------------------------------------- figures
@@ -137,15 +160,21 @@ def figure_psd(result: StickResult):
     ax.plot(qf, fit.psd(qf), **MEASURED, label=f"fit H = {fit.hurst:.2f} +- {fit.hurst_stderr:.2f}")
     q_c, q_a = 2 * np.pi / s.measured_scale, 2 * np.pi / float(v.scales[-1])
     ys = [p.psd]
-    if q_a > q_c:
+    if q_a > q_c and v.extrapolated:
         qe = np.geomspace(q_c, q_a, 30)
         lo, hi = fit.psd(qe, v.hurst[0]), fit.psd(qe, v.hurst[-1])
         ax.fill_between(qe, np.minimum(lo, hi), np.maximum(lo, hi), **BAND)
         ax.plot(qe, fit.psd(qe), **EXTRAPOLATED, label="extrapolated")
         ys.append(fit.psd(qe))
+    ax.axvspan(*q_fit, color="C2", alpha=0.1, lw=0, label="fit range")
     ax.axvline(q_c, **CUTOFF)
     ax.text(q_c, 0.02, " measured scale", rotation=90, fontsize=7,
             transform=ax.get_xaxis_transform(), va="bottom")  # fmt: skip
+    good = result.good_range
+    if good is not None and good.noise_level is not None:
+        ax.axhline(good.noise_level, color="C3", lw=1, linestyle="-.", label="noise floor")
+    if v.no_extrapolation:
+        ax.set_title("not self-affine in the fit range: nothing extrapolated", fontsize=8)
     xs = decades(p.q, [q_a])
     log_axes(ax, xs, decades(*ys))
     ax.set_xlabel("wavevector q (1/m)")
@@ -190,7 +219,7 @@ def figure_margin(result: StickResult):
     c = v.centre
     if v.scales.size > 1:
         ax.fill_between(v.scales, v.margins.min(axis=0), v.margins.max(axis=0), **BAND,
-                        label=f"H = {v.hurst[0]:.2f}-{v.hurst[-1]:.2f}")  # fmt: skip
+                        label=f"H = {range_text(v.hurst[0], v.hurst[-1], '.2f')}")  # fmt: skip
         ax.plot(v.scales, v.margins[c], **EXTRAPOLATED, label=f"H = {v.hurst[c]:.2f}")
     ax.plot(v.scales[:1], v.margins[c, :1], "o", color="C0", label="measured")
     ax.axhline(1.0, color="C3", lw=1, gid="threshold")

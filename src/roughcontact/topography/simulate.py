@@ -14,13 +14,27 @@ surfaces that continue the measured spectrum down to the interaction scale
   (:meth:`ScaleStatistics.extrapolated_at`, the same numbers as the Eq. 10 verdict). The
   synthetic surface is a window of ``size`` a0 onto the smallest scales: Eqs. 6-10 depend
   on h'_rms, H and lambda_s, not on the long scales it leaves out.
-* **Interaction**: the paper's smoothed 9-3 wall with ``l_a = w/E*``
-  (:meth:`roughcontact.SmoothLJ93.from_adhesion_length`): stiffness k = E*/(2 a0) and
-  range ``sqrt(24 a0 l_a)``, which is *not* the Delta_r of the Eq. 10 verdict (the
-  interaction range the user gave). ``l_a/a0`` must lie in :data:`ADHESION_RANGE`: at
-  ``l_a/a0 = 0.1`` (and above) the approach of a surface with h'_rms = 0.1 measured here
-  is pulled into an adhered state whose repulsive area never reaches 1 % over the
-  offsets below; the paper's largest is 0.05.
+* **Interaction**: with ``interaction_range`` (what :func:`roughcontact.stick` passes:
+  the range Delta_r the user asked for) a Maugis-Dugdale zone on a hard wall
+  (:class:`roughcontact.MaugisDugdale`: the stress w/Delta_r up to the gap Delta_r), so
+  that w and Delta_r are both the user's. The paper's smoothed 9-3 wall cannot do this:
+  continuity ties ``w = k Delta_r^2/12``, so with its stiffness k = E*/(2 a0) the range
+  is ``sqrt(24 a0 l_a)`` (silicon: 0.065 nm, not 0.5 nm), and with the range forced the
+  stiffness drops to ``12 w/Delta_r^2`` (silicon: E*/(59 a0)), a soft core that spread
+  the repulsion and measured kappa_rep = 40 on a surface where the hard wall gives 3.2
+  (64^2 sites, h'_rms = 0.3, l_a/a0 = 5e-4: sticky there, not sticky on the hard wall,
+  as Eq. 10 predicts). Without ``interaction_range`` the paper's wall
+  (:meth:`roughcontact.SmoothLJ93.from_adhesion_length`), for which ``l_a/a0`` must lie
+  in :data:`ADHESION_RANGE`: at ``l_a/a0 = 0.1`` its range grows to ``sqrt(24 a0 l_a)``
+  and the approach is pulled into an adhered state whose repulsive area never reaches
+  1 %; the paper's largest is 0.05. With the range given, :data:`ADHESION_RANGE_GIVEN`
+  reaches soft materials (PDMS: E 2 MPa, nu 0.5, w 0.05 J/m^2, l_a/a0 = 62.5): there no
+  seed reaches 1 % repulsive area on approach: at the first offset within reach of the
+  attraction the attractive area jumps to 77 % of A0 (``di-1.di``, 64^2 sites; 85-96 %
+  further in) under a tensile load of -1.7 E* A0, and separating takes a finite pull-off
+  force -- the surfaces jump into contact, the model's own limit for soft solids,
+  reported as "sticky" when every seed does so (:data:`JUMP_AREA`). No coarse-graining
+  is assumed: the lattice stays a0.
 * **Path**: an elastic substrate of thickness ``size`` a0 on a rigid base (nu = 1/2,
   as the study of :mod:`roughcontact.studies` runs the paper), approached at offsets in
   bearing-area units (:func:`roughcontact.solvers.offsets.relative_offsets`: the
@@ -52,10 +66,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .._validate import HURST, ParameterError, Range, json_safe
+from .._validate import ParameterError, Range, json_safe
+from .simulate_units import SIMULATION_UNITS
+from .synthetic import HURST_MIN, SHORT_CUTOFF, synthetic_surface
 
 __all__ = [
     "ADHESION_RANGE",
+    "ADHESION_RANGE_GIVEN",
     "SEEDS",
     "SIMULATION_UNITS",
     "SIZE",
@@ -71,12 +88,12 @@ __all__ = [
 SIZE = Range(64, 1024, integer=True)
 #: Number of surface realisations (seeds 1, 2, ...).
 SEEDS = Range(1, 32, integer=True)
-#: l_a/a0 = w/(E* a0) the simulation handles (module docstring: measured limit).
+#: l_a/a0 = w/(E* a0) the simulation handles with the paper's parametrisation (module
+#: docstring: measured limit).
 ADHESION_RANGE = Range(1e-5, 0.05)
-#: lambda_s/a0 of the synthetic surface: the paper's smallest short cutoff.
-SHORT_CUTOFF = 4.0
-#: Smallest Hurst exponent of the synthetic surface (``self_affine`` takes (0, 1]).
-HURST_MIN = 0.05
+#: l_a/a0 handled with the range given (the wall's stiffness 12 w/range^2): soft materials
+#: such as PDMS (l_a/a0 ~ 60) included (module docstring).
+ADHESION_RANGE_GIVEN = Range(1e-5, 100.0)
 #: A_rep/A0 of the analysis (the paper's 1 %).
 TARGET_AREA = 0.01
 #: The approach stops at the first step with A_rep/A0 at least this (1 % is bracketed).
@@ -102,9 +119,10 @@ def check_options(size, seeds) -> tuple[int, int]:
     return SIZE.check("simulate_size", size), SEEDS.check("simulate_seeds", seeds)
 
 
-def _adhesion_over_a0(work_of_adhesion, contact_modulus, atomic_spacing) -> float:
+def _adhesion_over_a0(work_of_adhesion, contact_modulus, atomic_spacing, given=False) -> float:
     la = work_of_adhesion / contact_modulus / atomic_spacing
-    if not ADHESION_RANGE.contains(la):
+    accepted = ADHESION_RANGE_GIVEN if given else ADHESION_RANGE
+    if not accepted.contains(la):
         raise ParameterError(
             f"simulate: the adhesion length l_a/a0 = work_of_adhesion/(E* atomic_spacing) = "
             f"{la:.3g} must be {ADHESION_RANGE.accepted} for the simulation (the paper's "
@@ -112,48 +130,6 @@ def _adhesion_over_a0(work_of_adhesion, contact_modulus, atomic_spacing) -> floa
             f"work_of_adhesion, modulus and atomic_spacing"
         )
     return la
-
-
-def synthetic_surface(stats, *, atomic_spacing: float, size: int = 256, seed=1):
-    """The synthetic surface of seed ``seed`` and how it was chosen (module docstring).
-
-    Parameters
-    ----------
-    stats : ScaleStatistics
-        The scan's statistics (SI).
-    atomic_spacing : float
-        a0 [m], the lattice spacing.
-    size : int
-        n (sites per axis), in :data:`SIZE`.
-    seed : int
-        Seed of :func:`roughcontact.self_affine`.
-
-    Returns
-    -------
-    heights : ndarray, shape (n, n)
-        Heights in units of a0.
-    params : dict
-        ``hurst`` (used), ``hurst_fitted``, ``hurst_clipped``, ``rms_slope``,
-        ``short_cutoff``, ``long_cutoff`` (a0).
-    """
-    from ..surfaces import self_affine
-
-    n = SIZE.check("simulate_size", size)
-    a0 = float(atomic_spacing)
-    fitted = float(stats.fit.hurst)
-    H = min(max(fitted, HURST_MIN), HURST.hi)
-    slope = stats.extrapolated_at(SHORT_CUTOFF * a0)[0]
-    params = {
-        "hurst": H,
-        "hurst_fitted": fitted,
-        "hurst_clipped": H != fitted,
-        "rms_slope": float(slope),
-        "short_cutoff": SHORT_CUTOFF,
-        "long_cutoff": n / 2,
-    }
-    h = self_affine((n, n), hurst=H, rms_slope=slope, short_cutoff=SHORT_CUTOFF,
-                    long_cutoff=n / 2, seed=seed)  # fmt: skip
-    return h, params
 
 
 @dataclass(frozen=True)
@@ -264,58 +240,6 @@ class Simulation:
         return json_safe(d)
 
 
-#: The unit of every number of ``Simulation.to_dict()`` under the key ``simulation``.
-SIMULATION_UNITS = {
-    "simulation.kappa": "1 (h'rms E* A_rep/N at A_rep = 1 %, 1/mean of 1/kappa over seeds)",
-    "simulation.inverse_kappa": "1 (mean over seeds)",
-    "simulation.inverse_kappa_interval": "1 (confidence interval of the mean)",
-    "simulation.predicted_kappa": "1 (Eq. 10's, 1/mean of 1/kappa over seeds)",
-    "simulation.predicted_inverse_kappa": "1",
-    "simulation.predicted_inverse_kappa_interval": "1",
-    "simulation.confidence": "1 (two-sided level of the intervals)",
-    "simulation.seeds_analysed": "realisations",
-    "simulation.pull_off_pressure": "Pa (mean over seeds)",
-    "simulation.target_area": "1 (A_rep/A0)",
-    "simulation.surface.size": "grid points per axis",
-    "simulation.surface.atomic_spacing": "m (a0, the lattice spacing)",
-    "simulation.surface.physical_size": "m (size a0)",
-    "simulation.surface.short_cutoff": "m (lambda_s)",
-    "simulation.surface.long_cutoff": "m (lambda_L)",
-    "simulation.surface.short_cutoff_over_a0": "a0",
-    "simulation.surface.long_cutoff_over_a0": "a0",
-    "simulation.surface.hurst": "1 (used)",
-    "simulation.surface.hurst_fitted": "1 (the scan's fit)",
-    "simulation.surface.rms_slope": "1 (h'rms extrapolated to lambda_s)",
-    "simulation.interaction.adhesion_length": "m (l_a = w/E*)",
-    "simulation.interaction.adhesion_length_over_a0": "1 (l_a/a0)",
-    "simulation.interaction.range": "m (sqrt(24 a0 l_a), the wall's; not inputs.interaction_range)",
-    "simulation.interaction.range_over_a0": "a0",
-    "simulation.interaction.stiffness": "Pa/m (E*/(2 a0))",
-    "simulation.interaction.work_of_adhesion": "J/m^2",
-    "simulation.interaction.contact_modulus": "Pa",
-    "simulation.path.bearing_area": "1 (fractions of A0 overlapped by the undeformed surfaces)",
-    "simulation.path.lead_in": "a0 (above the first contact)",
-    "simulation.path.until_area": "1 (A_rep/A0 that ends the approach)",
-    "simulation.path.tol": "E* (largest force imbalance per site)",
-    "simulation.path.max_iter": "iterations",
-    "simulation.path.thickness": "m (substrate on a rigid base)",
-    "simulation.path.poisson": "1",
-    "simulation.seeds.seed": "1 (seed of the surface)",
-    "simulation.seeds.kappa": "1",
-    "simulation.seeds.kappa_rep": "1",
-    "simulation.seeds.kappa_att": "1",
-    "simulation.seeds.inverse_kappa": "1",
-    "simulation.seeds.predicted_kappa": "1",
-    "simulation.seeds.attractive_area": "1 (A_att/A0 at A_rep = 1 %)",
-    "simulation.seeds.pull_off": "E* (pull-off force per A0)",
-    "simulation.seeds.pull_off_pressure": "Pa (pull_off E*)",
-    "simulation.seeds.steps": "path steps",
-    "simulation.seeds.steps_not_converged": "path steps",
-    "simulation.seeds.seconds": "s",
-    "simulation.seconds": "s",
-}
-
-
 class _ApproachFields:
     """Keep the pressure of the approach state nearest :data:`TARGET_AREA` (Fig. 1's
     choice, as :class:`roughcontact.studies.task.AreaFields`), ignoring the retraction:
@@ -412,6 +336,7 @@ def simulate_stickiness(
     size: int = 256,
     seeds: int = 3,
     progress=None,
+    interaction_range: float | None = None,
 ) -> Simulation:
     """Run the paper's simulation on synthetic surfaces continuing the scan's spectrum.
 
@@ -431,6 +356,10 @@ def simulate_stickiness(
         Realisations (seeds 1 ... ``seeds``), in :data:`SEEDS`.
     progress : callable, optional
         ``progress(k, seeds)`` before realisation k (1-based).
+    interaction_range : float, optional
+        Delta_r [m] of the wall: the range the user asked for, with the stiffness
+        ``k = 12 w/Delta_r^2`` that continuity of the smoothed wall requires. None: the
+        paper's parametrisation (k = E*/(2 a0), range ``sqrt(24 a0 l_a)``).
 
     Returns
     -------
@@ -443,13 +372,17 @@ def simulate_stickiness(
         :data:`ADHESION_RANGE`.
     """
     from ..analysis.stickiness import inverse_mean
-    from ..interactions import SmoothLJ93
+    from ..interactions import MaugisDugdale, SmoothLJ93
+    from .notes import simulation_notes
 
     n, count = check_options(size, seeds)
     E, w, a0 = float(contact_modulus), float(work_of_adhesion), float(atomic_spacing)
-    la = _adhesion_over_a0(w, E, a0)
+    la = _adhesion_over_a0(w, E, a0, given=interaction_range is not None)
     t0 = time.perf_counter()
-    law = SmoothLJ93.from_adhesion_length(la)
+    if interaction_range is None:
+        law = SmoothLJ93.from_adhesion_length(la)
+    else:
+        law = MaugisDugdale(work_of_adhesion=la, range=float(interaction_range) / a0)
     runs, surface = [], None
     for k in range(1, count + 1):
         if progress is not None:
@@ -471,12 +404,15 @@ def simulate_stickiness(
         "rms_slope": surface["rms_slope"],
     }
     interaction = {
-        "law": "lj93smooth",
+        "law": law.name,
         "adhesion_length": la * a0,
         "adhesion_length_over_a0": la,
         "range": law.range * a0,
         "range_over_a0": law.range,
-        "stiffness": law.stiffness * E / a0,
+        "stiffness": (getattr(law, "stiffness", None) or math.inf) * E / a0,
+        "parametrisation": "paper's 9-3 wall: k = E*/(2 a0)"
+        if interaction_range is None
+        else "Maugis-Dugdale zone of the range given on a hard wall",
         "work_of_adhesion": w,
         "contact_modulus": E,
     }
@@ -490,6 +426,7 @@ def simulate_stickiness(
         "thickness": n * a0,
         "poisson": 0.5,
     }
+    verdict, extra = _verdict(inv, runs, law, la, surface["rms_slope"])
     return Simulation(
         surface=surface_d,
         interaction=interaction,
@@ -497,33 +434,65 @@ def simulate_stickiness(
         runs=tuple(runs),
         inverse_kappa=inv,
         predicted_inverse_kappa=pred,
-        verdict=inv.verdict,
+        verdict=verdict,
         predicted_verdict=pred.verdict,
-        notes=tuple(_notes(surface, runs, law, a0)),
+        notes=tuple(simulation_notes(surface, runs, law, a0, HURST_MIN, SHORT_CUTOFF) + extra),
         seconds=time.perf_counter() - t0,
     )
 
 
-def _notes(surface, runs, law, a0) -> list:
-    from .verdict import _length_text
+#: Attractive area (fraction of A0) that marks a jump into contact (module docstring).
+JUMP_AREA = 0.5
 
-    notes = [
-        f"simulation: the paper's smoothed 9-3 wall with range sqrt(24 a0 l_a) = "
-        f"{_length_text(law.range * a0)} (not the interaction range of Eq. 10), on synthetic "
-        f"surfaces with lambda_s = {SHORT_CUTOFF:g} a0 and h'rms = {surface['rms_slope']:.3g}, "
-        "the scan's h'rms extrapolated to lambda_s"
-    ]
-    if surface["hurst_clipped"]:
-        notes.append(
-            f"simulation: the fitted H = {surface['hurst_fitted']:.3f} is outside "
-            f"[{HURST_MIN:g}, 1]; the synthetic surfaces use H = {surface['hurst']:.3g}"
+
+def _jump_into_contact(run):
+    """``(attractive area, load)`` where a seed that never reached 1 % repulsive area
+    jumped into contact (attractive area >= JUMP_AREA of A0 under a tensile load, every
+    step converged, a finite pull-off force); None otherwise."""
+    ds = run.path
+    if ds is None or not run.error.startswith("target area") or run.steps_not_converged:
+        return None
+    if not (math.isfinite(run.pull_off) and run.pull_off > 0):
+        return None
+    att = np.asarray(ds["attractive_area"].values, dtype=float)
+    load = np.asarray(ds["load"].values, dtype=float)
+    i = int(np.argmax(att))
+    return (float(att[i]), float(load[i])) if att[i] >= JUMP_AREA and load[i] < 0 else None
+
+
+def _verdict(inv, runs, law, la, slope):
+    """The simulated verdict and its notes: the seeds' kappa, the soft-solid limit (every
+    seed jumped into contact) and the finite-size guard (module docstring)."""
+    from ..theory.pastewka_robbins import necessary_condition
+
+    verdict, extra = inv.verdict, []
+    jumps = [_jump_into_contact(r) for r in runs]
+    rough = min(float(np.std(r.heights)) for r in runs)  # a0
+    if inv.n == 0 and runs and all(j is not None for j in jumps):
+        area = min(j[0] for j in jumps)
+        extra.append(
+            f"simulation: on approach every seed jumped into contact (attractive area >= "
+            f"{area:.0%} of A0 under a tensile load) before A_rep reached 1 %, and needed a "
+            "finite pull-off force to separate"
         )
-    if surface["rms_slope"] > 1:
-        notes.append(
-            f"simulation: h'rms = {surface['rms_slope']:.3g} > 1 at lambda_s, beyond the "
-            "small-slope surfaces of the paper"
+        if la > rough:  # w/E* beyond the window's roughness: flattening it costs less
+            verdict = "sticky"
+            extra[-1] += ": the model's limit for soft solids, sticky"
+            return verdict, extra
+    shallow = rough < MIN_ROUGHNESS_OVER_RANGE * law.range
+    if verdict == "sticky" and shallow and not necessary_condition(la, slope):
+        verdict = "undecided"
+        extra.append(
+            f"simulation: undecided: its seeds stuck although l_a/a0 = {la:.3g} fails the "
+            f"necessary condition l_a/a0 > 0.49 h'rms = {0.49 * slope:.3g}, and the synthetic "
+            f"surfaces (rms height {rough:.3g} a0) lie within reach of the attraction (range "
+            f"{law.range:.3g} a0): a finite-size effect; use a larger --simulate-size"
         )
-    for r in runs:
-        if r.error:
-            notes.append(f"simulation seed {r.seed}: no result ({r.error})")
-    return notes
+    return verdict, extra
+
+
+#: Smallest rms height of the synthetic window, in interaction ranges, below which a
+#: simulated "sticky" that contradicts the necessary condition is a finite-size effect
+#: (silicon, h'rms 0.2, Delta_r = 1.67 a0: sticky at 64^2 sites, rms height 0.54 a0, not
+#: sticky at 128^2, 0.85 a0).
+MIN_ROUGHNESS_OVER_RANGE = 0.5
