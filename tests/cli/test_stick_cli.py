@@ -52,6 +52,8 @@ def test_text_output(scan):
     assert any(line.startswith("measured down to") and "margin" in line for line in lines)
     assert any(line.startswith("extrapolated down to 0.3 nm") for line in lines)
     assert any(line.startswith("note: E* = ") for line in lines)  # every note in the text
+    assert any(line.startswith("the field's criteria side by side") for line in lines)
+    assert any(line.startswith("Persson & Tosatti") for line in lines)
     assert not any("--" in w for line in lines for w in line.split() if w[:1].isdigit())
 
 
@@ -61,7 +63,7 @@ def test_json_keys_units_and_the_python_call(scan):
     d = json.loads(r.output)
     for key in ("sticky", "margin", "rms_slope", "rms_curvature", "d_rep", "units", "verdict",
                 "hurst", "hurst_stderr", "reliability_cutoff", "flip_scale", "measured",
-                "extrapolated", "inputs", "margin_atomic"):  # fmt: skip
+                "extrapolated", "inputs", "margin_atomic", "criteria"):  # fmt: skip
         assert key in d
     assert d["units"]["rms_curvature"].startswith("1/m") and d["units"]["d_rep"].startswith("m")
     assert d["inputs"]["contact_modulus"] == pytest.approx(1e7)

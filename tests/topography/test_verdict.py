@@ -229,3 +229,34 @@ def test_bad_input_is_a_one_line_parameter_error():
     lattice = Topography(np.asarray(topo.heights), 1.0)
     with pytest.raises(ParameterError, match="pixel_size"):
         stick(lattice, modulus="10 MPa", **RUBBER)
+
+
+@pytest.mark.parametrize("dim", [2, 1])
+def test_criteria_table_beside_the_verdict_uses_the_measured_moments(dim):
+    """The field's criteria at the measured scale: the same h'_rms/h''_rms as the verdict,
+    and M1 = int d^2q |q| C(q) equal to the direct FFT sum over the same modes (2D), or to
+    the isotropic 2D surface's M1 from its profiles, <|cos theta|> = 2/pi (1D)."""
+    a = 10 * NM
+    h = rc.self_affine(128, hurst=0.8, rms_slope=0.1, short_cutoff=4 * a, pixel_size=a, seed=3)
+    spec = np.abs(np.fft.fft2(h - h.mean())) ** 2 / h.size**2
+    q = 2 * np.pi * np.hypot(*np.meshgrid(np.fft.fftfreq(128, a), np.fft.fftfreq(128, a)))
+    m1 = float(np.sum((q * spec)[q <= np.pi / a]))
+    if dim == 1:  # a profile: average the moments of all rows through the same reader path
+        rows = [stick(Topography(r, (a,), periodic=True, height_unit="m",
+                                 info={"length_unit": "m"}), modulus="3 MPa", detrend="none",
+                      **RUBBER)
+                for r in h[::4]]  # fmt: skip
+        got = np.mean([r.criteria["inputs"]["half_derivative_variance"] for r in rows])
+        assert got == pytest.approx(m1, rel=0.15)  # 32 profiles of one surface
+        return
+    topo = Topography(h, (a, a), periodic=True, height_unit="m", info={"length_unit": "m"})
+    r = stick(topo, modulus="3 MPa", detrend="none", **RUBBER)  # the oracle's heights
+    table = r.criteria
+    assert table["scale"] == pytest.approx(r.statistics.measured_scale)
+    assert table["inputs"]["rms_slope"] == pytest.approx(r.statistics.rms_slope)
+    assert table["inputs"]["half_derivative_variance"] == pytest.approx(m1, rel=1e-6)
+    keys = [c["key"] for c in table["criteria"]]
+    assert "pastewka_robbins" in keys and "persson_tosatti" in keys
+    pr = next(c for c in table["criteria"] if c["key"] == "pastewka_robbins")
+    assert pr["sticky"] == r.verdict.measured.sticky  # the same Eq. 10 at the same scale
+    assert json.loads(json.dumps(r.to_dict()))["criteria"]["criteria"][0]["key"] == keys[0]

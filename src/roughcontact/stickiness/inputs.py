@@ -38,6 +38,7 @@ __all__ = [
     "CriterionInputs",
     "inputs_from_criterion",
     "inputs_from_heights",
+    "inputs_from_scale_statistics",
     "self_affine_inputs",
     "self_affine_moments",
 ]
@@ -324,4 +325,40 @@ def inputs_from_criterion(
         units="SI",
         source="roughcontact criterion inputs"
         + (" and the self-affine spectrum (closed form)" if math.isfinite(m1) else ""),
+    )
+
+
+def inputs_from_scale_statistics(
+    stats, *, contact_modulus, work_of_adhesion, interaction_range=math.nan,
+    youngs_modulus=math.nan,
+) -> CriterionInputs:  # fmt: skip
+    r""":class:`CriterionInputs` of a measured scan at its measured scale (SI).
+
+    ``stats`` is the scan's :class:`~roughcontact.topography.statistics.ScaleStatistics`
+    (windowed PSD, lengths in m): h_rms, h'_rms and h''_rms are its measured values (roughness
+    down to ``stats.measured_scale``, the instrument's reliable range), and
+    :math:`M_1 = \int d^2q\, |q| C(q)` is summed over the same (windowed) Fourier modes with
+    :math:`|q| \le 2\pi/\lambda_c`. For a profile (C1D, isotropy assumed) the 2D moment is
+    :math:`M_1 = (\pi/2) \int dq_x |q_x| C^{1D}(q_x)`, since :math:`\langle|\cos\theta|\rangle
+    = 2/\pi` over directions. ``contact_modulus``/``youngs_modulus`` [Pa],
+    ``work_of_adhesion`` [J/m^2], ``interaction_range`` [m]. Roughness finer than the
+    measured scale is not in these inputs: every criterion's verdict is at that scale.
+    """
+    modes = stats.modes  # each Fourier mode's share p of <h^2> (Parseval), by |q|
+    keep = modes.q <= 2 * np.pi / float(stats.measured_scale) * (1 + 1e-12)
+    m1 = float(np.sum((modes.q * modes.p)[keep]))
+    if modes.dim == 1:
+        m1 *= np.pi / 2
+    return CriterionInputs(
+        contact_modulus=float(contact_modulus),
+        work_of_adhesion=float(work_of_adhesion),
+        interaction_range=float(interaction_range),
+        rms_height=float(stats.rms_height),
+        rms_slope=float(stats.rms_slope),
+        rms_curvature=float(stats.rms_curvature),
+        half_derivative_variance=m1 if m1 > 0 else math.nan,
+        hurst=float(stats.fit.hurst) if 0 < float(stats.fit.hurst) < 1 else math.nan,
+        youngs_modulus=float(youngs_modulus),
+        units="SI",
+        source=f"the scan's Fourier modes ({modes.window} window) down to its measured scale",
     )

@@ -20,9 +20,9 @@ from .result import CriterionResult, decide, no_verdict
 
 KEY = "pastewka_robbins"
 VALIDATED = (
-    "GFMD simulations of self-affine surfaces (H = 0.3-0.8, h'rms = 0.1-0.3, λs = 4-32 a0, "
-    "short-range 9-3 wall; Pastewka & Robbins 2014, Fig. 4); judged on the reproduction's "
-    "72 parameter sets (reproduction/README.md)"
+    "GFMD simulations of self-affine surfaces (H = 0.3 to 0.8, h'rms = 0.1 to 0.3, "
+    "λs = 4 to 32 a0, short-range 9-3 wall; Pastewka & Robbins 2014, Fig. 4); judged on "
+    "the reproduction's 72 parameter sets (reproduction/README.md)"
 )
 
 

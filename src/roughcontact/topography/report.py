@@ -85,6 +85,14 @@ def summary(result: StickResult) -> list[str]:
     lines += [f"note: {n}" for n in result.notes if n not in first]
     if result.simulation is not None:
         lines += simulation_summary(result.simulation)
+    if result.criteria is not None:
+        from ..stickiness import format_table
+
+        lines.append(
+            f"the field's criteria side by side, with the roughness down to the measured "
+            f"{_length_text(result.criteria['scale'])} (no extrapolation):"
+        )
+        lines += format_table(result.criteria).splitlines()
     return lines
 
 

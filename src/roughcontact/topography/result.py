@@ -88,6 +88,8 @@ UNITS = {
     "missing_data.fraction": "1",
     "criterion_measured.*": "SI: Pa, J/m^2, m, 1/m; see roughcontact criterion --json",
     "criterion_atomic.*": "SI: Pa, J/m^2, m, 1/m; see roughcontact criterion --json",
+    "criteria.*": "SI: Pa, J/m^2, m, 1/m (inputs); each criterion's parameter is dimensionless;"
+    " scale in m",
     **SIMULATION_UNITS,
 }
 
@@ -119,6 +121,9 @@ class StickResult:
         The verdict under the other kappa_rep (``"kappa_rep"``, ``"source"``,
         ``"verdict"``: a :class:`Verdict`), whether the two agree and which one stands
         and why (``"agree"``, ``"stand_behind"``, ``"why"``).
+    criteria : dict or None
+        The field's stickiness criteria side by side at the measured scale
+        (:func:`roughcontact.stickiness.criteria_table`, with ``"scale"`` [m]).
     """
 
     topography: object = field(repr=False)
@@ -129,6 +134,7 @@ class StickResult:
     simulation: object = None
     good_range: object = None
     kappa_rep_check: dict | None = None
+    criteria: dict | None = None
 
     @property
     def sticky(self) -> bool | None:
@@ -254,6 +260,7 @@ class StickResult:
             "criterion_atomic": None if crit_a is None else crit_a.to_dict(),
             "notes": list(self.notes),
             "simulation": None if self.simulation is None else self.simulation.to_dict(),
+            "criteria": self.criteria,
             "units": dict(UNITS),
         }
         return json_safe(d)

@@ -267,6 +267,7 @@ def stick(
         v, stats, common, simulation, lambda k: stickiness_verdict(stats, kappa_rep=k, **common)
     )
     return StickResult(
+        criteria=_criteria(stats, m, inputs["youngs_modulus"], simulation),
         topography=topo,
         statistics=stats,
         verdict=v,
@@ -276,6 +277,21 @@ def stick(
         good_range=good,
         kappa_rep_check=check,
     )
+
+
+def _criteria(stats, measured, youngs_modulus, simulation) -> dict:
+    """The field's criteria side by side at the measured scale (:mod:`roughcontact.stickiness`)."""
+    from ..stickiness import criteria_table
+    from ..stickiness.inputs import inputs_from_scale_statistics
+
+    inputs = inputs_from_scale_statistics(
+        stats, contact_modulus=measured.contact_modulus,
+        work_of_adhesion=measured.work_of_adhesion,
+        interaction_range=measured.interaction_range, youngs_modulus=youngs_modulus,
+    )  # fmt: skip
+    table = criteria_table(inputs, simulated=None if simulation is None else simulation.verdict)
+    table["scale"] = float(stats.measured_scale)
+    return table
 
 
 def _statistics(topo, cutoff, fit_range, *, detect, source):
