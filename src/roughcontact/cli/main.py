@@ -522,6 +522,9 @@ def _line(key, value, unit, width) -> str:
 #: The most steps ``roughcontact path`` takes (approach; the retraction doubles it).
 MAX_STEPS = MAX_PATH_STEPS  # 100_000, shared with the studies' [path]
 OFFSET_UNITS = ("absolute", "length", "rms_height", "bearing_area")
+#: The approach of ``roughcontact path --until-area A`` without --offsets/--loads: START STOP
+#: STEP in rms heights relative to the first contact (the studies' default path, deeper).
+DEFAULT_APPROACH = (0.5, -4.0, 0.125)
 
 
 def _path_values(option, start, stop, step):
@@ -566,7 +569,8 @@ def _path_values(option, start, stop, step):
     default=None,
     metavar="A",
     help="Stop the approach at the first step with A_rep/A0 >= A (0 < A <= 1); STOP is "
-    "then the farthest value tried. Exit code 4 if STOP comes first.",
+    "then the farthest value tried. Exit code 4 if STOP comes first. Alone (no --offsets, "
+    "--loads): the approach --offsets 0.5 -4 0.125 --offset-unit rms_height.",
 )
 @click.option(
     "--retract/--no-retract",
@@ -646,8 +650,21 @@ def path(
 
     from ..solvers import PathError, PathInterrupted, approach_retract
 
+    default_approach = None
+    if offsets is None and loads is None and until_area is not None:
+        # --until-area alone: the approach the studies use, from 0.5 rms heights above the
+        # first contact inwards by 1/8 rms height; --until-area ends it
+        if offset_unit not in ("absolute", "rms_height"):
+            raise ParameterError(f"--offset-unit {offset_unit} needs --offsets START STOP STEP")
+        offsets, offset_unit = DEFAULT_APPROACH, "rms_height"
+        default_approach = (
+            "default approach --offsets {:g} {:g} {:g} --offset-unit rms_height "
+            "(no --offsets or --loads given)".format(*DEFAULT_APPROACH)
+        )
     if (offsets is None) == (loads is None):
-        raise ParameterError("give exactly one of --offsets or --loads")
+        raise ParameterError(
+            "give exactly one of --offsets or --loads (or --until-area alone: a default approach)"
+        )
     option = "--offsets" if offsets is not None else "--loads"
     if loads is not None and offset_unit != "absolute":
         raise ParameterError(f"--offset-unit {offset_unit} applies to --offsets only")
@@ -743,6 +760,8 @@ def path(
         "output": str(output),
         "periodic": sub.periodic,
     }
+    if default_approach is not None:
+        summary["approach"] = default_approach  # a choice made for the user: said so
     if surface is not None:
         summary["surface"] = surface  # instrument files: what was read, in which units
     if as_json:
