@@ -863,34 +863,20 @@ def demo(size, seed, study_size, seeds, output, as_json):
         from ..workflows.demo import run_demo_study
 
         study = run_demo_study(
-            output, size=study_size, seeds=range(1, seeds + 1), progress=not as_json
+            output,
+            size=study_size,
+            seeds=range(1, seeds + 1),
+            progress=not as_json,
+            hard_wall=out,
         )
         out["study"] = {k: v for k, v in study.items() if k != "table_markdown"}
     if as_json:
         click.echo(json.dumps(json_safe(out), default=lambda v: None, allow_nan=False))
         return
-    s = out["surface"]
-    click.echo(
-        f"Self-affine surface {size}x{size}: H = {s['hurst']}, h'rms = "
-        f"{s['rms_slope']:.4g}, h''rms = {s['rms_curvature']:.4g}, "
-        f"λs = {s['short_cutoff']:g}, λL = {s['long_cutoff']:g}, seed {seed}"
-    )
-    click.echo("Hard-wall contact on an elastic half-space (E* = 1):")
-    click.echo(f"{'N/(A0 E*)':>12} {'A_rep/A0':>10} {'offset':>10} {'iterations':>10}")
-    for r in out["path"]:
-        click.echo(
-            f"{r['load']:12.4e} {r['repulsive_area']:10.5f} {r['offset']:10.4f} "
-            f"{r['iterations']:10d}"
-        )
-    if out["kappa_rep"] is not None:
-        click.echo(
-            f"kappa_rep at A_rep = 1 % of A0: {out['kappa_rep']:.3f} (site count), "
-            f"{out['kappa_rep_corrected']:.3f} (perimeter-corrected area); the continuum "
-            "hard-wall value the paper's 'kappa_rep ~ 2' refers to"
-        )
-    else:
-        click.echo(f"kappa_rep: {out['kappa_rep_error']}")
-    click.echo(f"all converged: {out['all_converged']}; total {out['total_seconds']:.1f} s")
+    from ..workflows.report import hard_wall_lines
+
+    for line in hard_wall_lines(out):  # the same lines as report.md's first section
+        click.echo(line)
     if study is not None:
         click.echo("\nAdhesive study (smoothed 9-3 LJ wall), measured at A_rep = 1 % of A0:")
         for line in study["table_markdown"]:
