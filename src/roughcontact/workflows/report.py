@@ -147,7 +147,7 @@ def _kappa_rep_lines(rows) -> list[str]:
         f"{_span(rows, 'band_width', 2)} a0 here, πδ/d_rep = {_span(rows, 'band_fraction', 2)}, "
         "and κ_rep ≈ κ_rep,hw (1 + πδ/d_rep). Evidence: benchmarks/kappa_rep.py (README, "
         "'Two κ_rep'): the excess over the hard wall shrinks with πδ/d_rep as λs grows, and "
-        "a 16 times stiffer wall (--stiffness 8) comes within 4 % of the hard wall; the peer "
+        "a 16 times stiffer wall (--stiffness 8) comes to about 4 % of the hard wall; the peer "
         "Adhesion (SmoothContactSystem) finds the same repulsive sites. The measured "
         "verdicts do not depend on κ_rep; the Eq. 10 column 'κ_rep measured' uses ours.",
     ]
