@@ -49,6 +49,9 @@ extensions = [
 source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
 root_doc = "index"
 exclude_patterns = ["_build", "Thumbs.db", ".DS_Store"]
+# Literal text everywhere: with smartquotes, "--offsets" in the CLI reference (sphinx-click)
+# became an en dash, and an option copied from the page failed.
+smartquotes = False
 
 # -- MyST (Markdown pages and the README parts they include)
 myst_enable_extensions = ["dollarmath", "amsmath", "colon_fence"]

@@ -139,6 +139,12 @@ def test_round_trip_through_the_writer_and_the_reader(path, tmp_path):
             assert back[name].dtype == path[name].dtype, name
     # a failed write leaves nothing behind: the one writer is the atomic one
     assert sorted(p.name for p in tmp_path.iterdir()) == ["p.nc"]
+    # the yes/no attributes come back as booleans (stored 1/0: netCDF has no bool), and a
+    # path read back is written again as it was
+    assert back.attrs["separated"] is True and back.attrs["all_converged"] is True
+    again = read_path(write_path(back, tmp_path / "q.nc"))
+    assert again.attrs["separated"] is True
+    xr.testing.assert_identical(again, back)
 
 
 def test_an_empty_path_round_trips(tmp_path):

@@ -29,6 +29,7 @@ from ._validate import GRID_SIZE, PIXEL_SIZE, POISSON, ParameterError, Range
 __all__ = [
     "ATTRIBUTES",
     "FIELDS",
+    "FLAGS",
     "FIELD_STEP",
     "PER_STEP",
     "REQUIRED",
@@ -117,8 +118,8 @@ _POSITIVE = Range(0, lo_open=True)
 ATTRIBUTES = (
     Attribute("control", "", "'offset' or 'load': what the path steps through"),
     Attribute("pull_off", "pressure", "largest tensile load on retraction (NaN: not measured)"),
-    Attribute("separated", "", "1 if the retraction ends without repulsive contact"),
-    Attribute("all_converged", "", "1 if every step converged"),
+    Attribute("separated", "", "1 if the retraction ends without repulsive contact (read: bool)"),
+    Attribute("all_converged", "", "1 if every step converged (read: bool)"),
     Attribute("total_seconds", "s", "wall time of the path"),
     Attribute("rms_height", "length", "spectral rms height of the surface"),
     Attribute("rms_slope", "1", "spectral rms slope h'rms", True, Range(0)),
@@ -240,16 +241,30 @@ def add_fields(ds, fields: dict):
     return ds
 
 
+#: The yes/no attributes: 1/0 in the dataset (netCDF has no boolean attribute, and a
+#: dataset from approach_retract must stay writable by ``ds.to_netcdf``), True/False once
+#: read back by :func:`read_path`.
+FLAGS = ("separated", "all_converged")
+
+
 def read_path(path, *, check: bool = True):
     """Open a path NetCDF file (loaded into memory); a one-line ParameterError if it is not one.
 
-    With ``check`` (default) the dataset is checked by :func:`check_path`.
+    With ``check`` (default) the dataset is checked by :func:`check_path`. The yes/no
+    attributes :data:`FLAGS` (``separated``, ``all_converged``; stored as 1/0) are
+    returned as Python ``bool``.
     """
     from ._io import read_netcdf
 
     ds = read_netcdf(path, refusal=f"path file {str(path)!r} is not a readable NetCDF file")
     if check:
         check_path(ds)
+    for name in FLAGS:
+        value = ds.attrs.get(name)
+        if isinstance(value, (np.ndarray, np.generic)) and np.size(value) == 1:
+            value = value.item()
+        if isinstance(value, (bool, int)) and value in (0, 1):
+            ds.attrs[name] = bool(value)
     return ds
 
 
@@ -316,8 +331,15 @@ def write_path(ds, path, *, encoding=None, attrs=None, opener=None):
     Through :func:`roughcontact._io.write_netcdf_atomic` (built in memory, written to a
     fresh temporary file, renamed over ``path``); ``encoding``, ``attrs`` (added to the
     file's attributes, not to ``ds``) and ``opener`` as there. A full disk raises
-    :class:`roughcontact._io.WriteError` (one line) with ``path`` as it was.
+    :class:`roughcontact._io.WriteError` (one line) with ``path`` as it was. The
+    :data:`FLAGS` of a dataset from :func:`read_path` (bool) are written as 1/0.
     """
     from ._io import write_netcdf_atomic
 
+    if any(isinstance(ds.attrs.get(name), bool) for name in FLAGS):
+        ds = ds.copy(deep=False)
+        ds.attrs = dict(ds.attrs)
+        for name in FLAGS:
+            if isinstance(ds.attrs.get(name), bool):
+                ds.attrs[name] = int(ds.attrs[name])
     return write_netcdf_atomic(ds, path, encoding=encoding, attrs=attrs, opener=opener)

@@ -151,22 +151,38 @@ def _spy_figure1(monkeypatch):
 
 
 def _assert_figure1_shows_the_maps(calls, study, directory):
-    """Fig. 1: one map per ℓa of one seed, at the approach step nearest A_rep = 2 %."""
+    """Fig. 1: a hard wall and one map per ℓa of one seed, all at A_rep ≈ 2 % of A0.
+
+    Oracle for "the same area": each adhesive panel is at least as near 2 % as the task
+    file's map (the approach step nearest 2 %), since its approach was followed again
+    through the same steps and finer ones between them.
+    """
+    from roughcontact.plot import study_maps
+
     ((maps, kwargs, fig),) = calls
     assert kwargs["target_area"] == 0.02
-    la = [json.loads(m.attrs["task_parameters"])["adhesion_length"] for m in maps]
-    assert la == list(ADHESION_LENGTHS) and {m.attrs["seed"] for m in maps} == {1}
-    for ds, ax, row in zip(maps, fig.axes, study["contact_maps"], strict=True):
-        # only the pressure of one step is kept: the approach step nearest 2 % of A0
+    assert kwargs["labels"][0] == "non-adhesive (hard wall)"
+    stored = study_maps(directory / "tasks")
+    la = [json.loads(m.attrs["task_parameters"])["adhesion_length"] for m in stored]
+    assert la == list(ADHESION_LENGTHS) and {m.attrs["seed"] for m in stored} == {1}
+    assert len(maps) == len(stored) + 1 == len(study["contact_maps"])
+    assert [row["adhesion_length"] for row in study["contact_maps"]] == [None, *la]
+    for n, (p, ax, row) in enumerate(zip(maps, fig.axes, study["contact_maps"], strict=True)):
+        p = np.asarray(p)
+        assert row["repulsive_area"] == (p > 0).mean() and row["attractive_area"] == (p < 0).mean()
+        # the panel's pixels are the map's sites: 2 repulsive, 1 attractive, 0 none
+        expect = np.where(p > 0, 2, np.where(p < 0, 1, 0))
+        np.testing.assert_array_equal(ax.images[0].get_array().T, expect)
+        if n == 0:  # the hard wall: no attraction, the load corrected onto 2 %
+            assert not (p < 0).any() and abs((p > 0).mean() / 0.02 - 1) < 0.05
+            continue
+        ds = stored[n - 1]
         assert "gap" not in ds and ds.sizes["field_step"] == 1
         approach = ds["repulsive_area"].values[ds["branch"].values == "approach"]
         assert int(ds["field_step"][0]) == int(np.argmin(np.abs(approach - 0.02)))
-        p = ds["pressure"].values[0]
-        assert (p > 0).mean() == approach[int(ds["field_step"][0])] == row["repulsive_area"]
-        # the panel's pixels are the task file's sites: 2 repulsive, 1 attractive, 0 none
-        expect = np.where(p > 0, 2, np.where(p < 0, 1, 0))
-        np.testing.assert_array_equal(ax.images[0].get_array().T, expect)
-        assert (p < 0).any() and row["attractive_area"] == (p < 0).mean() > 0
+        kept = (ds["pressure"].values[0] > 0).mean()
+        assert abs((p > 0).mean() - 0.02) <= abs(kept - 0.02) + 1e-12
+        assert (p < 0).any()
     for fmt, magic in (("png", b"\x89PNG"), ("pdf", b"%PDF-")):
         path = directory / "figures" / f"fig1_contact_maps.{fmt}"
         assert str(path) in study["figures"]["fig1_contact_maps"]
@@ -199,13 +215,17 @@ def test_demo_small_json(tmp_path, monkeypatch):
         inv = [1 / k for k in row["kappa_values"]]
         assert row["kappa"] == pytest.approx(1 / np.mean(inv))
         assert row["kappa_rep_hard_wall"] < row["kappa_rep"]  # the paper's wall's band
-    assert any("κ_rep of the paper's wall" in line for line in study["summary"])
+    # κ_rep of the paper's wall is not the paper's ≈ 2: said, and the explanation is ours
+    assert any(line.startswith("κ_rep is NOT reproduced") for line in study["summary"])
+    assert any(line.startswith("Our explanation (not the paper's)") for line in study["summary"])
+    assert "kappa_rep ~ 2" in out["kappa_rep_note"]  # the hard wall's, in the JSON too
     # stronger adhesion: smaller κ_att and a larger pull-off (the trend of Fig. 4)
     kappa_att = [row["kappa_att"] for row in study["table"]]
     pull_off = [row["pull_off"] for row in study["table"]]
     assert kappa_att == sorted(kappa_att, reverse=True) and pull_off == sorted(pull_off)
     report = (tmp_path / "demo" / "report.md").read_text()
     assert "κ_att" in report and "fig2" in report
+    assert "## Hard-wall load path" in report and "κ_rep of this hard wall" in report
     assert (tmp_path / "demo" / "demo.nc").exists()
     _assert_figure1_shows_the_maps(calls, study, tmp_path / "demo")
     # a second run resumes: nothing is recomputed

@@ -145,6 +145,21 @@ def test_until_area_stops_and_retracts_through_the_visited_offsets(surface, tmp_
     assert list(ds["branch"].values) == ["approach"] * n + ["retract"] * k
 
 
+def test_until_area_alone_takes_the_default_approach_and_says_so(surface, tmp_path):
+    surface_file, _ = surface
+    law = ["--interaction", "lj93smooth", "--adhesion-length", 0.005, "--until-area", 0.03]
+    r, ds = run_path(surface_file, tmp_path / "d.nc", *law)
+    assert r.exit_code == 0, r.output
+    assert "default approach --offsets 0.5 -4 0.125" in json.loads(r.stdout)["approach"]
+    explicit = ["--offsets", 0.5, -4.0, 0.125, "--offset-unit", "rms_height"]
+    r, same = run_path(surface_file, tmp_path / "e.nc", *explicit, *law)
+    assert r.exit_code == 0 and "approach" not in json.loads(r.stdout)
+    np.testing.assert_array_equal(ds["offset"].values, same["offset"].values)
+    assert ds.attrs["until_area_reached"] == 1 and ds.attrs["offset_unit"] == "rms_height"
+    # neither an approach nor --until-area: still one line naming the options
+    one_line_error(invoke("path", surface_file, "-o", tmp_path / "n.nc"), "--offsets", "--loads")
+
+
 def test_until_area_not_reached_says_how_far_it_got(surface, tmp_path):
     surface_file, _ = surface
     out = tmp_path / "p.nc"

@@ -81,6 +81,7 @@ def test_failed_task_exits_1(tmp_path, make_study):
     assert len(list((tmp_path / "o").glob("task-*.nc"))) == 8
 
 
+@pytest.mark.slow  # 1-2 min: a kill -9 mid-study and the resume (CI: pytest -m slow)
 def test_kill_9_then_resume_equals_an_uninterrupted_run(tmp_path, make_study):
     study = make_study(size=64, num=16)
     out = tmp_path / "killed"

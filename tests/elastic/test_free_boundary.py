@@ -180,6 +180,7 @@ def test_operators_keep_precision_and_backend_shapes():
         sub.pressure(np.full((10, 14), np.nan))
 
 
+@pytest.mark.peers
 def test_matches_contact_mechanics_free_half_space():
     # the peer's FreeFFTElasticHalfSpace (Hockney padding of Love's pixel response) on
     # the same pressure: it takes forces p a0^2 on the padded grid and returns the

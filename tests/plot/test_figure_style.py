@@ -173,7 +173,7 @@ def test_figure2_legend_names_the_fitted_slope_kappa_fit():
     assert r"$\lambda_s/a_0 = 4$" in title and "$n = 64$" in title
 
 
-# --- 3. Figs. 3-4: the measured κ_rep, 1/mean(1/κ_rep) ----------------------------------
+# --- 3. Figs. 3-4: the measured κ_rep of the table's rows, 1/mean(1/κ_rep) over seeds ---
 
 
 def _sticky_top(fig):
@@ -182,15 +182,18 @@ def _sticky_top(fig):
 
 
 def test_sticky_region_is_drawn_at_the_measured_kappa_rep():
-    # usable finite positive κ_rep: 2, 4, 8 -> 1/mean(1/κ) = 3/(7/8) = 24/7 (κ mean: 4.67);
-    # NaN, negative and the failed task's 100 are left out
+    # one row of the table (H, ℓa fixed; six seeds), usable finite positive κ_rep: 2, 4,
+    # 8 -> 1/mean(1/κ) = 3/(7/8) = 24/7 (κ mean: 4.67); NaN, negative and the failed
+    # task's 100 are left out
     per_task = [2.0, 4.0, NAN, -1.0, 8.0, 100.0]
-    ds = synthetic(kappa_rep=per_task, failed=[0, 0, 0, 0, 0, 1])
+    ds = synthetic(hurst=(0.8,), la=(0.005,), seeds=range(1, 7), kappa_rep=per_task,
+                   failed=[0, 0, 0, 0, 0, 1])  # fmt: skip
     expect = 24.0 / 7.0
-    assert D.harmonic_mean(ds, "kappa_rep") == (pytest.approx(expect, rel=1e-12), 3)
+    assert D.kappa_rep_levels(ds) == ([pytest.approx(expect, rel=1e-12)], "measured")
     top, label = _sticky_top(figure4(ds))
     assert top == pytest.approx(expect, rel=1e-12)
     assert r"$\kappa_\mathrm{att} < \kappa_\mathrm{rep} = 3.43$ (measured)" in label
+    assert not _gid(figure4(ds).axes[1], "sticky_band")  # one row: one boundary
     # Fig. 3 (b): Eq. 2 with the same measured κ_rep
     (eq2,) = _gid(figure3(ds).axes[1], "theory")
     xy = eq2.get_xydata()
@@ -201,7 +204,7 @@ def test_sticky_region_is_drawn_at_the_measured_kappa_rep():
     assert top == pytest.approx(2.5) and "(given)" in label
     (eq2,) = _gid(figure3(ds, kappa_rep=2.5).axes[1], "theory")
     np.testing.assert_allclose(eq2.get_xydata()[:, 1], eq2.get_xydata()[:, 0] / 2.5)
-    # nothing measured: the continuum value, said so
+    # nothing measured: the paper's value, said so
     none = synthetic(kappa_rep=[NAN] * 6)
     top, label = _sticky_top(figure4(none))
     assert top == pytest.approx(pr.KAPPA_REP) and "continuum" in label
@@ -209,12 +212,41 @@ def test_sticky_region_is_drawn_at_the_measured_kappa_rep():
     assert top == pytest.approx(pr.KAPPA_REP)
 
 
+def test_several_rows_give_the_rows_values_never_a_pooled_one():
+    # 6 rows (H x ℓa) of two seeds; per row 1/mean(1/κ) of (a, b); the pooled harmonic
+    # mean over all 12 tasks is in no row, and is drawn nowhere
+    first = [2.0, 3.0, 4.0, 2.5, 3.5, 4.5]
+    second = [4.0, 6.0, 8.0, 5.0, 7.0, 9.0]
+    order = [(h, seed, la) for h in range(2) for seed in range(2) for la in range(3)]
+    per_task = [(first if seed == 0 else second)[3 * h + la] for h, seed, la in order]
+    ds = synthetic(seeds=(1, 2), kappa_rep=per_task)
+    rows = sorted(2.0 / (1.0 / a + 1.0 / b) for a, b in zip(first, second, strict=True))
+    levels, how = D.kappa_rep_levels(ds)
+    np.testing.assert_allclose(levels, rows, rtol=1e-12)
+    assert how == "measured"
+    fig4 = figure4(ds)
+    top, label = _sticky_top(fig4)
+    assert top == pytest.approx(rows[0], rel=1e-12) and "smallest of the table's rows" in label
+    (band,) = _gid(fig4.axes[1], "sticky_band")
+    assert band.get_paths()[0].vertices[:, 1].max() == pytest.approx(rows[-1], rel=1e-12)
+    fig3 = figure3(ds)
+    assert not _gid(fig3.axes[1], "theory")
+    (band,) = _gid(fig3.axes[1], "theory_band")
+    xy = band.get_paths()[0].vertices
+    np.testing.assert_allclose(
+        [(xy[:, 1] / xy[:, 0]).min(), (xy[:, 1] / xy[:, 0]).max()], [1 / rows[-1], 1 / rows[0]]
+    )
+    assert f"{rows[0]:.3g}–{rows[-1]:.3g}" in band.get_label()
+    pooled = f"{1.0 / np.mean(1.0 / np.array(per_task)):.3g}"
+    assert all(pooled not in t for t in _texts(fig3) + _texts(fig4))
+
+
 def test_continuum_kappa_rep_line_is_dashed_at_2():
     ds = synthetic(kappa_rep=[4.0] * 6)
     (line,) = _gid(figure4(ds).axes[1], "kappa_rep_continuum")
     assert line.get_linestyle() == "--" and set(line.get_ydata()) == {pr.KAPPA_REP}
-    assert "continuum hard wall" in line.get_label()
-    assert r"$\kappa_\mathrm{rep} = 2$" in line.get_label()
+    assert "the paper's" in line.get_label()
+    assert r"$\kappa_\mathrm{rep} \approx 2$" in line.get_label()
     (line,) = _gid(figure3(ds).axes[1], "kappa_rep_continuum")
     xy = line.get_xydata()
     assert line.get_linestyle() == "--"
@@ -231,8 +263,9 @@ def test_hard_wall_reference_only_when_the_dataset_has_it():
     nan = ds.assign(kappa_rep_hard_wall=("task", np.full(6, NAN)))
     for fig in (figure3(nan), figure4(nan)):
         assert not _gid(fig.axes[1], "kappa_rep_hard_wall")
-    # 3, 6, 3, 6 (and a NaN): 1/mean(1/x) = 4, not the mean 4.5
-    hw = ds.assign(kappa_rep_hard_wall=("task", [3.0, 6.0, NAN, 3.0, 6.0, NAN]))
+    # each row of the table (two seeds) has 3 and 6: 1/mean(1/x) = 4, not the mean 4.5
+    ds = synthetic(seeds=(1, 2))
+    hw = ds.assign(kappa_rep_hard_wall=("task", [3.0] * 3 + [6.0] * 3 + [3.0] * 3 + [6.0] * 3))
     expect = 4.0
     (line,) = _gid(figure4(hw).axes[1], "kappa_rep_hard_wall")
     assert line.get_linestyle() == ":"

@@ -21,6 +21,7 @@ from roughcontact.plot import (  # noqa: E402
     save_figures,
     study_maps,
 )
+from roughcontact.plot._codes import STICKY_COLOURS  # noqa: E402
 from roughcontact.plot.maps import ORANGE  # noqa: E402
 from roughcontact.studies import collect_study, run_study, study_from_dict  # noqa: E402
 from roughcontact.theory import pastewka_robbins as pr  # noqa: E402
@@ -91,8 +92,19 @@ def test_figure2_plots_the_approach_and_the_fitted_kappa(study):
         assert x0 == pytest.approx(load[use].min() / scale) and x1 == pytest.approx(
             load[use].max() / scale
         )
-    assert colours[0.005] == "black" and colours[0.05] == "tab:blue"
-    assert colours[[k for k in colours if math.isnan(k)][0]] == "0.55"  # non-adhesive: grey
+    # the paper's colours: black non-adhesive, red sticky (κ < 0 at the target area),
+    # blue κ > 0, green where κ and the fitted slope differ in sign (the onset)
+    for tid, line in data.items():
+        t = ds.sel(task=tid)
+        la, k, fit = (float(t[n]) for n in ("adhesion_length", "kappa", "kappa_fit"))
+        if math.isnan(la):
+            kind = "non-adhesive"
+        elif k * fit < 0:
+            kind = "onset"
+        else:
+            kind = "sticky" if k < 0 else "not sticky"
+        assert line.get_color() in STICKY_COLOURS[kind], (tid, kind)
+    assert colours[[k for k in colours if math.isnan(k)][0]] == "black"
     assert r"$N/(A_0 h'_\mathrm{rms} E^*)$" in ax.get_xlabel()
     assert r"$A_\mathrm{rep}/A_0$" in ax.get_ylabel()
     # the legend names the fitted slope κ_fit, the title the surface (typeset)
@@ -130,18 +142,59 @@ def test_figure3_collapse_data_and_symbols(study):
         line = rep[tid]  # symbols: H -> marker, h'rms (one value) filled, ℓa -> colour
         assert line.get_marker() == {0.5: "s", 0.8: "o"}[float(t["hurst"])]
         assert line.get_markerfacecolor() == line.get_markeredgecolor()
-    theory = [next(ln for ln in ax.lines if ln.get_gid() == "theory") for ax in fig.axes[:3]]
-    kr = ds["kappa_rep"].values[~ds["failed"].values]
-    kr = 1.0 / np.mean(1.0 / kr[np.isfinite(kr) & (kr > 0)])  # the measured κ_rep
-    for line, slope in zip(theory, (1.0, 1.0 / kr, 1.0), strict=True):  # Eq. 4, Eq. 2, P d/π
+    theory = [next(ln for ln in fig.axes[k].lines if ln.get_gid() == "theory") for k in (0, 2)]
+    for line in theory:  # Eq. 4 and P d/π: y = x
         xy = line.get_xydata()
-        np.testing.assert_allclose(xy[:, 1], slope * xy[:, 0], rtol=1e-12)
+        np.testing.assert_allclose(xy[:, 1], xy[:, 0], rtol=1e-12)
+    # Eq. 2: the band between the smallest and the largest κ_rep of the table's rows (the
+    # tasks equal but for the seed, 1/<1/κ_rep> over the seeds), never a pooled value
+    lo, hi = min(_row_kappa_rep(ds)), max(_row_kappa_rep(ds))
+    assert hi > lo
+    assert not any(ln.get_gid() == "theory" for ln in fig.axes[1].lines)
+    band = next(c for c in fig.axes[1].collections if c.get_gid() == "theory_band")
+    xy = band.get_paths()[0].vertices
+    ratio = xy[:, 1] / xy[:, 0]
+    assert ratio.min() == pytest.approx(1 / hi, rel=1e-9)
+    assert ratio.max() == pytest.approx(1 / lo, rel=1e-9)
+    assert f"{lo:.3g}–{hi:.3g}" in band.get_label()
     continuum = next(ln for ln in fig.axes[1].lines if ln.get_gid() == "kappa_rep_continuum")
     xy = continuum.get_xydata()  # κ_rep = 2 for reference, dashed
     np.testing.assert_allclose(xy[:, 1], xy[:, 0] / pr.KAPPA_REP, rtol=1e-12)
     assert continuum.get_linestyle() == "--"
     given = next(ln for ln in figure3(ds, kappa_rep=2.0).axes[1].lines if ln.get_gid() == "theory")
     np.testing.assert_allclose(given.get_xydata()[:, 1], given.get_xydata()[:, 0] / 2.0)
+
+
+def _row_kappa_rep(ds):
+    """κ_rep of each row of the study's table, by hand: tasks equal but for the seed."""
+    rows = {}
+    for i in range(ds.sizes["task"]):
+        t = ds.isel(task=i)
+        k = float(t["kappa_rep"])
+        if bool(t["failed"]) or not (math.isfinite(k) and k > 0):
+            continue
+        key = (float(t["hurst"]), repr(float(t["adhesion_length"])), str(t["law"].values))
+        rows.setdefault(key, []).append(1.0 / k)
+    return [1.0 / np.mean(v) for v in rows.values()]
+
+
+def test_figure3_leaves_out_what_the_paper_does(study):
+    """min_area_per_cutoff: states with A_rep/λs² below it in grey, the others as symbols."""
+    _, ds = study
+    fig = figure3(ds, min_area_per_cutoff=10.0)
+    rep, few = _lines(fig.axes[1], "task:"), _lines(fig.axes[1], "few:")
+    assert few  # a 64² surface with λs = 4 has A_rep/λs² < 10 below A_rep/A0 = 0.039
+    for tid in ds["task"].values:
+        t = ds.sel(task=tid)
+        keep = (t["branch"].values == "approach") & t["converged"].values
+        x = t["repulsive_area"].values[keep]
+        y = t["repulsive_load"].values[keep]
+        ok = (x > 0) & (y > 0)
+        small = x * (64 / 4.0) ** 2 < 10.0
+        if (ok & small).any():
+            np.testing.assert_allclose(few[tid].get_xdata(), x[ok & small])
+        if (ok & ~small).any():
+            np.testing.assert_allclose(rep[tid].get_xdata(), x[ok & ~small])
 
 
 def test_figure4_theory_lines_are_eqs_6_and_7(study):
@@ -169,12 +222,13 @@ def test_figure4_theory_lines_are_eqs_6_and_7(study):
         (u, ratio), = _lines(ax_ratio, "task:")[tid].get_xydata()  # fmt: skip
         assert ratio == pytest.approx(float(t["area_ratio"]))
         assert a * u ** (2 / 3) == pytest.approx(pr.area_ratio(*args[:3]))
-    # the sticky region ends at the measured κ_rep, 1/<1/κ_rep> over the tasks
-    kr = ds["kappa_rep"].values[~ds["failed"].values]
-    kr = 1.0 / np.mean(1.0 / kr[np.isfinite(kr) & (kr > 0)])
+    # sticky below the smallest κ_rep of the table's rows, the lighter band up to the largest
+    rows = _row_kappa_rep(ds)
     shade = next(c for c in ax_kappa.collections if c.get_gid() == "sticky")
-    assert shade.get_paths()[0].vertices[:, 1].max() == pytest.approx(kr, rel=1e-12)
-    assert f"{kr:.3g}" in shade.get_label() and "(measured)" in shade.get_label()
+    assert shade.get_paths()[0].vertices[:, 1].max() == pytest.approx(min(rows), rel=1e-12)
+    assert f"{min(rows):.3g}" in shade.get_label() and "(measured" in shade.get_label()
+    band = next(c for c in ax_kappa.collections if c.get_gid() == "sticky_band")
+    assert band.get_paths()[0].vertices[:, 1].max() == pytest.approx(max(rows), rel=1e-12)
     continuum = next(ln for ln in ax_kappa.lines if ln.get_gid() == "kappa_rep_continuum")
     assert continuum.get_linestyle() == "--" and set(continuum.get_ydata()) == {pr.KAPPA_REP}
     ax_given = figure4(ds, kappa_rep=pr.KAPPA_REP).axes[1]

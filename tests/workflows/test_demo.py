@@ -88,3 +88,61 @@ def test_the_report_holds_a_line_per_row_and_the_notes():
     )  # fmt: skip
     assert lines[0] == "# roughcontact demo" and "S." in lines and "Run: R" in lines
     assert lines[-1] == "![fig2](figures/fig2.png)" and table_lines([row])[2] in lines
+
+
+def _row(la, verdict, continuum, measured_kappa_rep, kappas):
+    inv = [1 / k for k in kappas]
+    return {
+        "adhesion_length": la,
+        "analysed": len(kappas),
+        "kappa_values": kappas,
+        "kappa": 1 / np.mean(inv),
+        "inverse_kappa": float(np.mean(inv)),
+        "inverse_kappa_low": min(inv),
+        "inverse_kappa_high": max(inv),
+        "inverse_predicted_kappa_continuum": 0.23,
+        "inverse_predicted_kappa": -0.01,
+        "verdict": verdict,
+        "predicted_verdict": measured_kappa_rep,
+        "predicted_verdict_continuum": continuum,
+        "kappa_rep": 3.8,
+        "kappa_rep_values": [3.5, 4.1],
+        "kappa_rep_hard_wall": 2.37,
+        "kappa_rep_hard_wall_corrected": 2.13,
+    }
+
+
+def test_the_summary_never_counts_a_miss_as_agreement():
+    """Measured undecided with every seed κ < 0, Eq. 10 (κ_rep = 2) "not sticky": a miss,
+    named, not counted; both undecided: no verdict, not counted either."""
+    from roughcontact.workflows.report import summary_lines
+
+    rows = [
+        _row(0.001, "not sticky", "not sticky", "not sticky", [5.0, 6.0]),
+        _row(0.005, "undecided", "not sticky", "undecided", [-2.4, -8.5, -70.0]),
+        _row(0.02, "sticky", "sticky", "sticky", [-0.5, -0.8]),
+    ]
+    lines = summary_lines(rows)
+    paper = next(x for x in lines if x.startswith("Eq. 10 with the paper's κ_rep = 2"))
+    assert "at ℓa/a0 = 0.001, 0.02 (2 of 3 adhesion lengths)" in paper
+    (miss,) = [x for x in lines if x.startswith("NOT reproduced at ℓa/a0 = 0.005")]
+    assert '"not sticky"' in miss and "all 3 seeds have κ < 0" in miss
+    assert "Not counted as agreement" in miss
+    ours = next(x for x in lines if x.startswith("Eq. 10 with the measured κ_rep"))
+    assert "(2 of 3 adhesion lengths)" in ours and "0.005 both are undecided" in ours
+    # κ_rep: the paper's value not reproduced, the measured ones given, the reason ours
+    assert any(x.startswith("κ_rep is NOT reproduced") and "3.8" in x for x in lines)
+    assert any(x.startswith("Our explanation (not the paper's)") for x in lines)
+
+
+def test_the_report_holds_the_hard_wall_path_as_printed(demo):
+    from roughcontact.workflows.report import hard_wall_lines
+
+    lines = hard_wall_lines(demo)
+    assert len(lines) == 3 + len(demo["path"]) + 2
+    assert f"{demo['kappa_rep']:.3f} (site count)" in lines[-2] and "our reading" in lines[-2]
+    report = report_lines(
+        size=64, seeds=[1], short_cutoff=4.0, rows=[], summary=[], map_rows=[],
+        map_area=0.02, run="R", figures={}, hard_wall=demo,
+    )  # fmt: skip
+    assert report[2] == "## Hard-wall load path" and lines[0] in report and lines[-2] in report

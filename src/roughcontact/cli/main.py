@@ -538,6 +538,9 @@ def _line(key, value, unit, width) -> str:
 #: The most steps ``roughcontact path`` takes (approach; the retraction doubles it).
 MAX_STEPS = MAX_PATH_STEPS  # 100_000, shared with the studies' [path]
 OFFSET_UNITS = ("absolute", "length", "rms_height", "bearing_area")
+#: The approach of ``roughcontact path --until-area A`` without --offsets/--loads: START STOP
+#: STEP in rms heights relative to the first contact (the studies' default path, deeper).
+DEFAULT_APPROACH = (0.5, -4.0, 0.125)
 
 
 def _path_values(option, start, stop, step):
@@ -582,7 +585,8 @@ def _path_values(option, start, stop, step):
     default=None,
     metavar="A",
     help="Stop the approach at the first step with A_rep/A0 >= A (0 < A <= 1); STOP is "
-    "then the farthest value tried. Exit code 4 if STOP comes first.",
+    "then the farthest value tried. Exit code 4 if STOP comes first. Alone (no --offsets, "
+    "--loads): the approach --offsets 0.5 -4 0.125 --offset-unit rms_height.",
 )
 @click.option(
     "--retract/--no-retract",
@@ -662,8 +666,21 @@ def path(
 
     from ..solvers import PathError, PathInterrupted, approach_retract
 
+    default_approach = None
+    if offsets is None and loads is None and until_area is not None:
+        # --until-area alone: the approach the studies use, from 0.5 rms heights above the
+        # first contact inwards by 1/8 rms height; --until-area ends it
+        if offset_unit not in ("absolute", "rms_height"):
+            raise ParameterError(f"--offset-unit {offset_unit} needs --offsets START STOP STEP")
+        offsets, offset_unit = DEFAULT_APPROACH, "rms_height"
+        default_approach = (
+            "default approach --offsets {:g} {:g} {:g} --offset-unit rms_height "
+            "(no --offsets or --loads given)".format(*DEFAULT_APPROACH)
+        )
     if (offsets is None) == (loads is None):
-        raise ParameterError("give exactly one of --offsets or --loads")
+        raise ParameterError(
+            "give exactly one of --offsets or --loads (or --until-area alone: a default approach)"
+        )
     option = "--offsets" if offsets is not None else "--loads"
     if loads is not None and offset_unit != "absolute":
         raise ParameterError(f"--offset-unit {offset_unit} applies to --offsets only")
@@ -759,6 +776,8 @@ def path(
         "output": str(output),
         "periodic": sub.periodic,
     }
+    if default_approach is not None:
+        summary["approach"] = default_approach  # a choice made for the user: said so
     if surface is not None:
         summary["surface"] = surface  # instrument files: what was read, in which units
     if as_json:
@@ -860,34 +879,20 @@ def demo(size, seed, study_size, seeds, output, as_json):
         from ..workflows.demo import run_demo_study
 
         study = run_demo_study(
-            output, size=study_size, seeds=range(1, seeds + 1), progress=not as_json
+            output,
+            size=study_size,
+            seeds=range(1, seeds + 1),
+            progress=not as_json,
+            hard_wall=out,
         )
         out["study"] = {k: v for k, v in study.items() if k != "table_markdown"}
     if as_json:
         click.echo(json.dumps(json_safe(out), default=lambda v: None, allow_nan=False))
         return
-    s = out["surface"]
-    click.echo(
-        f"Self-affine surface {size}x{size}: H = {s['hurst']}, h'rms = "
-        f"{s['rms_slope']:.4g}, h''rms = {s['rms_curvature']:.4g}, "
-        f"λs = {s['short_cutoff']:g}, λL = {s['long_cutoff']:g}, seed {seed}"
-    )
-    click.echo("Hard-wall contact on an elastic half-space (E* = 1):")
-    click.echo(f"{'N/(A0 E*)':>12} {'A_rep/A0':>10} {'offset':>10} {'iterations':>10}")
-    for r in out["path"]:
-        click.echo(
-            f"{r['load']:12.4e} {r['repulsive_area']:10.5f} {r['offset']:10.4f} "
-            f"{r['iterations']:10d}"
-        )
-    if out["kappa_rep"] is not None:
-        click.echo(
-            f"kappa_rep at A_rep = 1 % of A0: {out['kappa_rep']:.3f} (site count), "
-            f"{out['kappa_rep_corrected']:.3f} (perimeter-corrected area); the continuum "
-            "hard-wall value the paper's 'kappa_rep ~ 2' refers to"
-        )
-    else:
-        click.echo(f"kappa_rep: {out['kappa_rep_error']}")
-    click.echo(f"all converged: {out['all_converged']}; total {out['total_seconds']:.1f} s")
+    from ..workflows.report import hard_wall_lines
+
+    for line in hard_wall_lines(out):  # the same lines as report.md's first section
+        click.echo(line)
     if study is not None:
         click.echo("\nAdhesive study (smoothed 9-3 LJ wall), measured at A_rep = 1 % of A0:")
         for line in study["table_markdown"]:

@@ -56,16 +56,17 @@ ADHESION = ("adhesion_length", "work_of_adhesion")
 D_REP = {"measured": ("d_rep",), "predicted": ("predicted_d_rep", "d_rep_predicted")}
 PAPER_MARKERS = {0.3: "^", 0.5: "s", 0.8: "o"}  # triangles, squares, circles (Figs. 3-4)
 OTHER_MARKERS = ("D", "v", "p", "h", "<", ">", "*")
-# ℓa/a0 = 0.0005, 0.005, 0.05 are black, blue, red in the paper: colours by rank of ℓa
+# ℓa/a0 = 0.0005, 0.005, 0.05 are black, blue, red in the paper (Figs. 3-4): those values
+# keep the paper's colours, any other ℓa takes the next of COLOURS by rank
+PAPER_COLOURS = {0.0005: "black", 0.005: "tab:blue", 0.05: "tab:red"}
 COLOURS = (
-    "black",
-    "tab:blue",
-    "tab:red",
     "tab:green",
     "tab:purple",
     "tab:orange",
     "tab:brown",
     "tab:olive",
+    "tab:cyan",
+    "tab:pink",
 )
 NON_ADHESIVE = "0.55"
 
@@ -207,7 +208,7 @@ class TaskStyle:
     """The paper's symbols: marker by H, colour by ℓa/a0, filled/open by h'rms, size by λs.
 
     Values the paper used get its symbols (H = 0.3, 0.5, 0.8: triangle, square, circle;
-    the smallest, middle, largest ℓa black, blue, red; the smallest h'rms filled); other
+    ℓa/a0 = 0.0005, 0.005, 0.05 black, blue, red; the smallest h'rms filled); other
     values get the next symbols in order. Sizes grow with the rank of λs. The symbols are
     assigned over every usable task of the dataset, so a task looks the same in every
     figure; :meth:`legend_handles` and :meth:`caption` describe the tasks actually drawn.
@@ -232,7 +233,11 @@ class TaskStyle:
     def colour(self, la) -> str:
         if not math.isfinite(la) or la <= 0:
             return NON_ADHESIVE
-        return COLOURS[_rank(self._la, la) % len(COLOURS)]
+        paper = PAPER_COLOURS.get(round(la, 9))
+        if paper:
+            return paper
+        others = [v for v in self._la if round(v, 9) not in PAPER_COLOURS]
+        return COLOURS[_rank(others, la) % len(COLOURS)]
 
     def __call__(self, i) -> dict:
         """``Axes.plot`` keywords of task ``i`` (markers only)."""
@@ -338,3 +343,103 @@ def select_tasks(ds, select):
     if not chosen:
         raise ParameterError(f"Fig. 2: no finished task matches select = {dict(select)!r}")
     return chosen
+
+
+#: The paper shows only states with A_rep/λs² ≳ 10, "so that there is a statistical number
+#: of contacting asperities" (Methods); Figs. 3 and the demo's report use the same rule.
+STATISTICAL_CONTACTS = 10.0
+
+
+def area_per_cutoff(ds) -> np.ndarray:
+    """Per task A0/λs² (dimensionless; A0 = (n a0)², λs in length): A_rep/λs² is
+    (A_rep/A0) times this. NaN where the dataset lacks ``size`` or ``short_cutoff``."""
+    n = ds.sizes["task"]
+    if not (_has(ds, "size") and _has(ds, "short_cutoff")):
+        return np.full(n, np.nan)
+    a0 = values(ds, "pixel_size") if _has(ds, "pixel_size") else np.ones(n)
+    return (values(ds, "size") * a0 / values(ds, "short_cutoff")) ** 2
+
+
+def eq4_outliers(ds, threshold=STATISTICAL_CONTACTS, far=0.5) -> dict:
+    """How the converged approach states with attraction compare with Eq. 4, and which of
+    them Fig. 3 leaves out (A_rep/λs² < ``threshold``).
+
+    ``r`` = N_att/((w/Δr) A_att) (dimensionless; Eq. 4: r = 1). Returns a dict:
+    ``threshold``; ``hidden`` (states below the threshold); ``shown_range`` ((min, max)
+    of r over the states shown, or None); ``far`` (states with r < ``far``),
+    ``far_no_contact`` (of them, with A_rep = 0), ``far_max_sites`` (their largest number
+    of attractive sites, A_att n²), ``far_hidden`` (of them, below the threshold) and
+    ``lowest`` (the smallest r; None without any state).
+    """
+    factor, la, dr = area_per_cutoff(ds), adhesion_length(ds), values(ds, "range")
+    modulus = values(ds, "contact_modulus")
+    sites = values(ds, "size") ** 2 if _has(ds, "size") else np.full(ds.sizes["task"], np.nan)
+    r_all, shown, hidden, no_contact, counts = [], [], [], [], []
+    for i in usable(ds):
+        if not (math.isfinite(la[i]) and la[i] > 0):
+            continue
+        names = ("attractive_area", "attractive_load", "repulsive_area")
+        c = curves(ds, i, names, converged_only=True)
+        ok = c["attractive_area"] > 0
+        area, rep = c["attractive_area"][ok], c["repulsive_area"][ok]
+        r = c["attractive_load"][ok] / modulus[i] / (la[i] / dr[i]) / area
+        below = rep * factor[i] < threshold if math.isfinite(factor[i]) else np.zeros_like(ok[ok])
+        r_all += list(r)
+        shown += list(r[~below])
+        hidden += list(below)
+        no_contact += list(rep == 0)
+        counts += list(np.rint(area * sites[i]))
+    r_all, hidden = np.asarray(r_all), np.asarray(hidden, dtype=bool)
+    no_contact, counts = np.asarray(no_contact, dtype=bool), np.asarray(counts)
+    out = r_all < far
+    return {
+        "threshold": float(threshold),
+        "hidden": int(hidden.sum()),
+        "shown_range": (float(min(shown)), float(max(shown))) if shown else None,
+        "far": int(out.sum()),
+        "far_below": float(far),
+        "far_no_contact": int((out & no_contact).sum()),
+        "far_hidden": int((out & hidden).sum()),
+        "far_max_sites": int(counts[out].max())
+        if out.any() and np.isfinite(counts[out]).all()
+        else None,
+        "lowest": float(r_all.min()) if r_all.size else None,
+    }
+
+
+def kappa_rep_levels(ds, given=None, name="kappa_rep") -> tuple[list[float], str]:
+    """The κ_rep values of the Eq. 2 line and the sticky region, and how they were obtained.
+
+    ``given`` (a positive float) wins: ``([given], "given")``. Else the measured κ_rep of
+    each row of the study's table (:func:`roughcontact.studies.aggregate.aggregate_seeds`:
+    tasks with equal parameters but the seed, :math:`1/\\langle 1/\\kappa_{rep}\\rangle`
+    over their usable tasks with a finite positive ``kappa_rep``), sorted, with
+    ``"measured"``; never one value pooled over different parameters, which no row of the
+    table shows. Without any, ``([2.0], "continuum")`` (the paper's value). ``name``: the
+    variable (``kappa_rep_hard_wall`` for the hard-wall reference).
+    """
+    from .._validate import positive
+    from ..studies.aggregate import _parameter_sets
+    from ..theory.pastewka_robbins import KAPPA_REP
+
+    if given is not None:
+        return [positive("kappa_rep", given)], "given"
+    if not _has(ds, name):
+        return [KAPPA_REP], "continuum"
+    kappa = np.asarray(ds[name].values, dtype=float).reshape(-1)
+    use = set(usable(ds).tolist())
+    levels = []
+    for tasks in _parameter_sets(ds)[1].values():
+        x = np.array([kappa[i] for i in tasks if i in use])
+        x = x[np.isfinite(x) & (x > 0)]
+        if x.size:
+            levels.append(float(1.0 / np.mean(1.0 / x)))
+    if not levels:
+        return [KAPPA_REP], "continuum"
+    return sorted(levels), "measured"
+
+
+def levels_text(levels) -> str:
+    """``3.55`` or ``3.55–4.1`` (3 significant digits) of the sorted ``levels``."""
+    lo, hi = f"{levels[0]:.3g}", f"{levels[-1]:.3g}"
+    return lo if lo == hi else f"{lo}–{hi}"

@@ -46,7 +46,8 @@ def log_axes(ax, xlim, ylim):
 
 
 def loglog(ax, xs, ys, slope=1.0, label=None, *, also=()):
-    """Log axes over the data and the line y = slope·x across them (``gid="theory"``).
+    """Log axes over the data and the line y = slope·x across them (``gid="theory"``;
+    ``slope=None``: no line).
 
     ``also``: further slopes whose lines y = s·x must fit in the y-range (reference lines
     drawn by the caller). Returns the x-limits (the decades of the data), or ``None``
@@ -58,9 +59,10 @@ def loglog(ax, xs, ys, slope=1.0, label=None, *, also=()):
         log_axes(ax, (0.1, 10.0), (0.1, 10.0))
         ax.text(0.5, 0.5, "no data", transform=ax.transAxes, ha="center", color="0.5")
         return None
-    xlim = decades(x, y / slope)
-    slopes = np.array([slope, *also], dtype=float)
+    xlim = decades(x, y / slope) if slope is not None else decades(x)
+    slopes = np.array([s for s in (slope, *also) if s is not None], dtype=float)
     log_axes(ax, xlim, decades(y, np.outer(slopes, xlim)))
-    line = np.geomspace(*xlim, 50)
-    ax.plot(line, slope * line, "-", color="0.4", lw=1, gid="theory", label=label, zorder=0)
+    if slope is not None:  # None: the caller draws its own line or band
+        line = np.geomspace(*xlim, 50)
+        ax.plot(line, slope * line, "-", color="0.4", lw=1, gid="theory", label=label, zorder=0)
     return xlim

@@ -24,8 +24,9 @@ tasks, the constant ones are in the title.
   Eqs. 6 and 7, sticky region (:math:`\kappa_{att} < \kappa_{rep}`, κ_rep measured)
   shaded.
 
-The measured κ_rep is :math:`1/\langle 1/\kappa_{rep}\rangle` over the usable tasks with
-a finite positive ``kappa_rep`` (1/κ adds up over seeds; κ itself is never averaged).
+The measured κ_rep is that of each row of the study's table (tasks equal but for the seed,
+:math:`1/\langle 1/\kappa_{rep}\rangle` over their seeds: 1/κ adds up over seeds; κ itself
+is never averaged), never one value pooled over different parameters.
 """
 
 from __future__ import annotations
@@ -39,6 +40,7 @@ import numpy as np
 from .._io import write_bytes_atomic
 from .._validate import DPI, ParameterError
 from ..theory import pastewka_robbins as pr
+from . import _codes as C
 from . import _data as D
 from .axes import decades, figure, log_axes, loglog
 from .maps import figure1
@@ -60,30 +62,6 @@ LEGEND = {"fontsize": 8, "frameon": False}
 
 def _kappa_rep_text(value, how) -> str:
     return rf"${KAPPA_REP} = {value:.3g}$ ({HOW[how]})"
-
-
-def _references(ds):
-    """``[(gid, κ_rep, label, line style)]``: the continuum κ_rep = 2 and, when the
-    dataset has finite values, the measured hard-wall reference ``kappa_rep_hard_wall``."""
-    refs = [
-        (
-            "kappa_rep_continuum",
-            pr.KAPPA_REP,
-            rf"continuum hard wall, ${KAPPA_REP} = {pr.KAPPA_REP:g}$",
-            {"linestyle": "--", "color": "0.25", "lw": 1.0},
-        )
-    ]
-    hard, _ = D.harmonic_mean(ds, "kappa_rep_hard_wall")
-    if math.isfinite(hard):
-        refs.append(
-            (
-                "kappa_rep_hard_wall",
-                hard,
-                rf"hard wall on these surfaces, ${KAPPA_REP} = {hard:.3g}$",
-                {"linestyle": ":", "color": "#8c510a", "lw": 1.5},
-            )
-        )
-    return refs
 
 
 def _key(fig, style, tasks):
@@ -118,7 +96,9 @@ def figure2(dataset, *, select=None, fit_max_area=None):
         ``fit_max_area`` (the least-squares line of the path analysis), drawn over their
         load range. The legend (outside the axes, right) gives ℓa/a0 and the fitted slope
         as :math:`\kappa_{fit}`, never as κ (which is the ratio at the target area); the
-        title names the surface (the values shared by the shown tasks).
+        title names the surface (the values shared by the shown tasks). Colours as in
+        the paper: red sticky (κ < 0 at the target area), blue adhesive with κ > 0,
+        black non-adhesive (shades darker with growing ℓa).
     """
     D.require(
         dataset,
@@ -130,6 +110,7 @@ def figure2(dataset, *, select=None, fit_max_area=None):
     kappa, top = D.values(ds, "kappa_fit"), D.fit_max_area(ds, fit_max_area)
     style = D.TaskStyle(ds)
     la = style.la
+    colours = C.sticky_colours(ds, tasks, la)
     surface = []
     for key in D.LABELS:
         if key in ds.coords:
@@ -141,10 +122,10 @@ def figure2(dataset, *, select=None, fit_max_area=None):
     ax.axvline(0.0, color="0.85", lw=0.8, gid="axis")
     fitted = False
     for i in sorted(tasks, key=lambda j: (np.nan_to_num(la[j], nan=-1.0), j)):
-        task, colour = str(ds["task"].values[i]), style.colour(la[i])
+        task, (colour, verdict) = str(ds["task"].values[i]), colours[i]
         c = D.curves(ds, i, ("load", "repulsive_area"))
         x, y = c["load"] / scale[i], c["repulsive_area"]
-        label = D.la_label(la[i])
+        label = D.la_label(la[i]) + (f" ({verdict})" if verdict else "")
         if math.isfinite(kappa[i]):
             label += rf", ${KAPPA_FIT} = {kappa[i]:.3g}$"
         ax.plot(x, y, "o-", ms=3, lw=0.8, color=colour, label=label, gid=f"data:{task}")
@@ -189,7 +170,7 @@ def _legend_below(fig, axes):
     fig.legend(handles, texts, loc="outside lower center", ncols=2, **LEGEND)
 
 
-def figure3(dataset, *, kappa_rep=None, d_rep="predicted"):
+def figure3(dataset, *, kappa_rep=None, d_rep="predicted", min_area_per_cutoff=None):
     r"""Fig. 3: the collapse of forces and areas over every task and contact area.
 
     Parameters
@@ -201,11 +182,18 @@ def figure3(dataset, *, kappa_rep=None, d_rep="predicted"):
         ``short_cutoff``; ``kappa_rep`` and ``kappa_rep_hard_wall`` when present).
     kappa_rep : float, optional
         κ_rep (dimensionless) of the Eq. 2 line in panel (b). Default ``None``: the
-        measured one, :math:`1/\langle 1/\kappa_{rep}\rangle` over the usable tasks with a
-        finite positive ``kappa_rep`` (the continuum 2 when there is none).
+        measured κ_rep of each row of the study's table
+        (:func:`~roughcontact.plot._data.kappa_rep_levels`): one line when there is one
+        row, else the band between the smallest and the largest (``gid="theory_band"``);
+        the continuum 2 when none is measured.
     d_rep : {"predicted", "measured"}
         Panel (c) normalisation: :math:`4h'_{rms}/h''_{rms}` (the paper) or the measured
         :math:`\pi A_{rep}/P` at the target area (lengths in a0).
+    min_area_per_cutoff : float, optional
+        The paper's rule (Methods): only states with :math:`A_{rep}/\lambda_s^2 \ge` this
+        (e.g. 10, "a statistical number of contacting asperities") are drawn with their
+        symbols; the earlier ones as small grey points (``gid="few:<task>"``). Default
+        ``None``: every state with its symbol.
 
     Returns
     -------
@@ -226,18 +214,22 @@ def figure3(dataset, *, kappa_rep=None, d_rep="predicted"):
     needs = ("branch", D.ADHESION, "range", D.SLOPE, "contact_modulus", D.D_REP[d_rep])
     D.require(dataset, (*steps, *needs, "hurst", "short_cutoff"), "Fig. 3")
     ds = dataset
-    kr, how = D.kappa_rep_choice(ds, kappa_rep)
+    levels, how = D.kappa_rep_levels(ds, kappa_rep)
     la, dr = D.adhesion_length(ds), D.values(ds, "range")
     scale = D.values(ds, D.SLOPE) * D.values(ds, "contact_modulus")
     modulus, diameter = D.values(ds, "contact_modulus"), D.values(ds, D.D_REP[d_rep])
+    factor = D.area_per_cutoff(ds)
     style = D.TaskStyle(ds)
     fig = figure(13.0, 5.4)
     axes = fig.subplots(1, 3)
     data = [([], []), ([], []), ([], [])]
-    drawn = []
+    drawn, greyed = [], False
     for i in D.usable(ds):
         task, st = str(ds["task"].values[i]), style(i)
         c = D.curves(ds, i, steps, converged_only=True)
+        few = np.zeros(c["repulsive_area"].shape, dtype=bool)
+        if min_area_per_cutoff is not None and math.isfinite(factor[i]):
+            few = c["repulsive_area"] * factor[i] < min_area_per_cutoff
         panels = [
             (la[i] / dr[i] * c["attractive_area"], c["attractive_load"] / modulus[i]),
             (c["repulsive_area"], c["repulsive_load"] / scale[i]),
@@ -245,25 +237,50 @@ def figure3(dataset, *, kappa_rep=None, d_rep="predicted"):
         ]
         for k, (x, y) in enumerate(panels):
             ok = np.isfinite(x) & np.isfinite(y) & (x > 0) & (y > 0)
-            if ok.any():
-                axes[k].plot(x[ok], y[ok], gid=f"task:{task}", **st)
-                data[k][0].append(x[ok])
-                data[k][1].append(y[ok])
+            if (ok & ~few).any():
+                axes[k].plot(x[ok & ~few], y[ok & ~few], gid=f"task:{task}", **st)
                 drawn.append(i)
+            if (ok & few).any():
+                label = None
+                if not greyed:
+                    label = (
+                        rf"$A_\mathrm{{rep}}/\lambda_s^2 < {min_area_per_cutoff:g}$ (first "
+                        "contacts; left out by the paper)"
+                    )
+                    greyed = True
+                axes[k].plot(x[ok & few], y[ok & few], ".", ms=2.5, color="0.7",
+                             gid=f"few:{task}", label=label, zorder=0.8)  # fmt: skip
+            data[k][0].append(x[ok])
+            data[k][1].append(y[ok])
     loglog(axes[0], *data[0], label=r"(a) Eq. 4: $N_\mathrm{att} = (w/\Delta r)\,A_\mathrm{att}$")
-    refs = _references(ds)
+    refs = C.reference_lines(ds)
     eq2 = r"(b) Eq. 2: $N_\mathrm{rep} = h'_\mathrm{rms} E^* A_\mathrm{rep}/\kappa_\mathrm{rep}$"
+    one = len(levels) == 1
     xlim = loglog(
         axes[1],
         *data[1],
-        slope=1.0 / kr,
-        label=f"{eq2}, {_kappa_rep_text(kr, how)}",
-        also=[1.0 / r[1] for r in refs],
+        slope=1.0 / levels[0] if one else None,
+        label=f"{eq2}, {_kappa_rep_text(levels[0], how)}" if one else None,
+        also=[1.0 / v for v in levels] + [1.0 / r[1] for r in refs],
     )
     if xlim is not None:
         line = np.geomspace(*xlim, 50)
+        if not one:
+            axes[1].fill_between(
+                line,
+                line / levels[-1],
+                line / levels[0],
+                color="0.55",
+                alpha=0.35,
+                lw=0,
+                zorder=0,
+                gid="theory_band",
+                label=f"{eq2}, ${KAPPA_REP} = {D.levels_text(levels)}$ (measured, the "
+                "table's rows)",
+            )
         for gid, value, label, kw in refs:
-            axes[1].plot(line, line / value, gid=gid, label=f"(b) {label}", zorder=0.5, **kw)
+            text = f"(b) {label}" if label else None
+            axes[1].plot(line, line / value, gid=gid, label=text, zorder=0.5, **kw)
     loglog(axes[2], *data[2], label=r"(c) $A_\mathrm{rep} = P\,d_\mathrm{rep}/\pi$")
     labels = [
         (
@@ -296,10 +313,11 @@ def figure4(dataset, *, kappa_rep=None, d_rep="measured"):
         ``kappa_rep_hard_wall`` when present).
     kappa_rep : float, optional
         κ_rep (dimensionless) bounding the shaded sticky region
-        :math:`\kappa_{att} < \kappa_{rep}`. Default ``None``: the measured one,
-        :math:`1/\langle 1/\kappa_{rep}\rangle` over the usable tasks with a finite
-        positive ``kappa_rep`` (1/κ adds up over seeds; the continuum 2 when there is
-        none); a float overrides it.
+        :math:`\kappa_{att} < \kappa_{rep}`. Default ``None``: the measured κ_rep of the
+        rows of the study's table (:func:`~roughcontact.plot._data.kappa_rep_levels`):
+        shaded below the smallest (``gid="sticky"``), lighter up to the largest
+        (``gid="sticky_band"``, when the rows differ); the continuum 2 when none is
+        measured; a float overrides it.
     d_rep : {"measured", "predicted"}
         The d_rep inserted in Eqs. 6-7: measured :math:`\pi A_{rep}/P` or
         :math:`4h'_{rms}/h''_{rms}` (lengths in a0).
@@ -323,8 +341,9 @@ def figure4(dataset, *, kappa_rep=None, d_rep="measured"):
     needs = ("area_ratio", "kappa_att", D.D_REP[d_rep], "range", D.ADHESION, D.SLOPE)
     D.require(dataset, (*needs, "hurst", "short_cutoff"), "Fig. 4")
     ds = dataset
-    kr, how = D.kappa_rep_choice(ds, kappa_rep)
-    refs = _references(ds)
+    levels, how = D.kappa_rep_levels(ds, kappa_rep)
+    kr = levels[0]
+    refs = C.reference_lines(ds)
     slope, dr, la = D.values(ds, D.SLOPE), D.values(ds, "range"), D.adhesion_length(ds)
     diameter = D.values(ds, D.D_REP[d_rep])
     u = slope * diameter / (math.pi * dr)
@@ -344,7 +363,7 @@ def figure4(dataset, *, kappa_rep=None, d_rep="measured"):
                 points[k][0].append(x)
                 points[k][1].append(y)
                 drawn.append(i)
-    levels = [kr, *(r[1] for r in refs)]
+    lines_at = [*levels, *(r[1] for r in refs)]
     for k, ax in enumerate(axes):
         xs, ys = (np.asarray(v, dtype=float) for v in points[k])
         if xs.size == 0:
@@ -359,10 +378,12 @@ def figure4(dataset, *, kappa_rep=None, d_rep="measured"):
         else:  # Eq. 7 with h'rms = Δr = ℓa = 1: X = (d/π)^(2/3)
             theory = pr.kappa_att(1.0, math.pi * grid**1.5, 1.0, 1.0)
             label = r"(b) Eq. 7: $\kappa_\mathrm{att} = (16/9\pi)^{1/3}\,X$"
-        ylim = decades(ys, theory, levels if k else [])
+        ylim = decades(ys, theory, lines_at if k else [])
         log_axes(ax, xlim, ylim)
         ax.plot(grid, theory, "-", color="0.3", lw=1.2, gid="theory", label=label, zorder=0)
         if k == 1:
+            # sticky below the smallest κ_rep of the table's rows; between the smallest
+            # and the largest the boundary depends on the row (lighter band)
             ax.fill_between(
                 grid,
                 ylim[0],
@@ -372,10 +393,23 @@ def figure4(dataset, *, kappa_rep=None, d_rep="measured"):
                 lw=0,
                 gid="sticky",
                 label=r"(b) sticky: $\kappa_\mathrm{att} < \kappa_\mathrm{rep} = "
-                + f"{kr:.3g}$ ({HOW[how]})",
+                + f"{kr:.3g}$ ({HOW[how]}"
+                + (", the smallest of the table's rows)" if len(levels) > 1 else ")"),
             )
+            if len(levels) > 1:
+                ax.fill_between(
+                    grid,
+                    kr,
+                    levels[-1],
+                    color="tab:orange",
+                    alpha=0.07,
+                    lw=0,
+                    gid="sticky_band",
+                    label=r"(b) sticky only below its own row's $\kappa_\mathrm{rep}$ "
+                    + f"(${KAPPA_REP} = {D.levels_text(levels)}$, measured per row)",
+                )
             for gid, value, text, kw in refs:
-                ax.axhline(value, gid=gid, label=f"(b) {text}", zorder=0.5, **kw)
+                ax.axhline(value, gid=gid, label=f"(b) {text}" if text else None, zorder=0.5, **kw)
     axes[0].set_xlabel(
         rf"$u = h'_\mathrm{{rms}} d_\mathrm{{rep}}/(\pi\,\Delta r)$,  {D_REP_TEXT[d_rep]}"
     )
@@ -399,7 +433,16 @@ def figure4(dataset, *, kappa_rep=None, d_rep="measured"):
 FIGURES = {"fig2_area_load": figure2, "fig3_collapse": figure3, "fig4_theory": figure4}
 
 
-def save_figures(dataset, out_dir, formats=("png", "pdf"), *, maps=None, dpi=150, **fig1):
+def save_figures(
+    dataset,
+    out_dir,
+    formats=("png", "pdf"),
+    *,
+    maps=None,
+    dpi=150,
+    min_area_per_cutoff=None,
+    **fig1,
+):
     """Write Figs. 2-4 (and Fig. 1 when ``maps`` are given) in every format.
 
     Parameters
@@ -416,6 +459,8 @@ def save_figures(dataset, out_dir, formats=("png", "pdf"), *, maps=None, dpi=150
         Fig. 1 is not made (a collected dataset holds no contact maps).
     dpi : int
         Resolution of raster formats (dots per inch, an integer in [10, 2400]).
+    min_area_per_cutoff : float, optional
+        Passed to :func:`figure3` (the paper's rule: 10).
     **fig1
         Passed to :func:`figure1` (``target_area``, ``labels``, ``region``).
 
@@ -437,7 +482,8 @@ def save_figures(dataset, out_dir, formats=("png", "pdf"), *, maps=None, dpi=150
         )
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
-    made = {name: make(dataset) for name, make in FIGURES.items()}
+    options = {"fig3_collapse": {"min_area_per_cutoff": min_area_per_cutoff}}
+    made = {name: make(dataset, **options.get(name, {})) for name, make in FIGURES.items()}
     if maps:
         made = {"fig1_contact_maps": figure1(maps, **fig1), **made}
     written = {}

@@ -5,14 +5,17 @@ h'rms = 0.1, λs = 8 a0, λL = L/2) pushed onto an elastic half-space (E* = 1) a
 increasing loads under load control, each state warm-started from the last
 (:func:`roughcontact.approach_retract`), with A_rep/A0 against N/A0 and κ_rep at 1 %
 repulsive area, from the site count and from the perimeter-corrected area (Pastewka &
-Robbins, PNAS 111, 3298 (2014), Eq. 2; the continuum hard-wall value is κ_rep ≈ 2).
+Robbins, PNAS 111, 3298 (2014), Eq. 2; the paper reports κ_rep ≈ 2 for its own soft wall,
+which the study below does not reproduce: see its report).
 
 **The adhesive study** (:func:`run_demo_study`): one surface family (H = 0.8,
 h'rms = 0.1, λs = 4 a0, λL = L/2: at 256², A_rep/λs² ≈ 41 at 1 % contact, enough
 contacts for the paper's statistics) on a half-space, the paper's smoothed 9-3 LJ wall at
 adhesion lengths from clearly non-sticky to clearly sticky, five seeds; each task an
 approach/retraction path analysed at A_rep = 1 % of A0, keeping the pressure map of its
-approach state nearest A_rep = 2 % of A0 for the contact maps of Fig. 1. The seeds are
+approach state nearest A_rep = 2 % of A0; Fig. 1 follows seed 1's approaches again with
+finer steps there, so that its panels (and a hard wall's, the paper's Fig. 1B) show the
+same A_rep (:mod:`roughcontact.workflows.figure1`). The seeds are
 combined by :func:`roughcontact.studies.aggregate.aggregate_seeds` (through 1/κ), the
 verdicts by the one rule of :mod:`roughcontact.analysis.stickiness`. Results, figures and
 a Markdown report (:mod:`roughcontact.workflows.report`) go to one directory; a rerun
@@ -38,6 +41,11 @@ __all__ = [
 #: From clearly not sticky to clearly sticky for this surface family: the measured onset
 #: (κ changing sign) lies between 0.001 and 0.005 at 256², so both sides are tested.
 ADHESION_LENGTHS = (0.0005, 0.001, 0.002, 0.005, 0.02)
+#: What the hard wall's κ_rep is compared with, said beside it (text and JSON).
+KAPPA_REP_NOTE = (
+    "hard wall; the paper reports kappa_rep ~ 2 for its own, soft wall (not reproduced "
+    "with that wall: see the study's report); comparing it with a hard wall is our reading"
+)
 #: A_rep/A0 of the contact maps of Fig. 1 (about the paper's; the figures' default).
 MAP_AREA = 0.02
 #: λs of the study's surfaces (a0).
@@ -78,7 +86,8 @@ def demo_path(*, size: int = 512, seed: int = 2014, loads=None, tol: float = 1e-
         ``surface`` (parameters and statistics), ``path`` (one row per load: load,
         repulsive_area, corrected_repulsive_area, offset, perimeter, mean_gap, iterations,
         converged, solve_seconds), ``all_converged``, ``total_seconds``, ``kappa_rep``,
-        ``kappa_rep_corrected`` and ``load_at_1_percent`` (``kappa_rep`` None and
+        ``kappa_rep_corrected``, ``kappa_rep_note`` (what it is compared with) and
+        ``load_at_1_percent`` (``kappa_rep`` None and
         ``kappa_rep_error`` when 1 % is not bracketed), ``path_error`` if a step failed
         (the steps before it are kept).
     """
@@ -136,6 +145,7 @@ def demo_path(*, size: int = 512, seed: int = 2014, loads=None, tol: float = 1e-
         out["kappa_rep_corrected"] = kappa(
             0.01, interpolate_at_area(corrected, path_loads, 0.01), stats.rms_slope
         )
+        out["kappa_rep_note"] = KAPPA_REP_NOTE
     except ValueError as err:
         out["kappa_rep"], out["kappa_rep_error"] = None, str(err)
     return out
@@ -172,8 +182,19 @@ def demo_study(size: int, seeds) -> dict:
     }
 
 
-def run_demo_study(out_dir, *, size: int = 256, seeds=(1, 2, 3, 4, 5), workers=None, progress=True):
+def run_demo_study(
+    out_dir,
+    *,
+    size: int = 256,
+    seeds=(1, 2, 3, 4, 5),
+    workers=None,
+    progress=True,
+    hard_wall=None,
+):
     """Run (or resume) the built-in study, collect it, draw Figs. 1-4, write ``report.md``.
+
+    ``hard_wall``: the result of :func:`demo_path` (the demo's hard-wall load path), put
+    into ``report.md`` as the demo prints it.
 
     The directory is locked for the whole run (:mod:`roughcontact.studies.lock`): a second
     demo writing into it fails at once instead of mixing its files with this one's.
@@ -188,43 +209,53 @@ def run_demo_study(out_dir, *, size: int = 256, seeds=(1, 2, 3, 4, 5), workers=N
     spec = study_from_dict(demo_study(size, seeds), source="<roughcontact demo>")
     with directory_lock(out, hint="run 'roughcontact demo' again (it resumes)"):
         summary = run_study(spec, out / "tasks", resume=True, workers=workers, progress=progress)
-        return _outputs(out, size, seeds, summary)
+        return _outputs(out, size, seeds, summary, hard_wall)
 
 
-def _map_rows(maps) -> list[dict]:
-    """ℓa, seed and the A_rep/A0, A_att/A0 of each map of Fig. 1 (as drawn)."""
-    from ..plot import contact_masks
+def _map_rows(maps, pressures, labels) -> list[dict]:
+    """ℓa (None: the hard wall), seed and the A_rep/A0, A_att/A0 of each map of Fig. 1."""
     from ..studies.store import task_parameters
 
-    rows = []
-    for ds in maps:
-        params = task_parameters(ds.attrs)
-        rep, att, _, _ = contact_masks(ds, MAP_AREA)
-        rows.append(
-            {
-                "adhesion_length": params.get("adhesion_length"),
-                "seed": params.get("seed"),
-                "repulsive_area": float(rep.mean()),
-                "attractive_area": float(att.mean()),
-            }
-        )
-    return rows
+    seed = task_parameters(maps[0].attrs).get("seed") if maps else None
+    las = [task_parameters(ds.attrs).get("adhesion_length") for ds in maps]
+    if len(pressures) == len(maps) + 1:
+        las.insert(0, None)  # the hard wall's panel comes first
+    return [
+        {
+            "adhesion_length": la,
+            "label": label,
+            "seed": seed,
+            "repulsive_area": float((p > 0).mean()),
+            "attractive_area": float((p < 0).mean()),
+        }
+        for la, p, label in zip(las, pressures, labels, strict=True)
+    ]
 
 
 def _figures(out: Path, ds):
     """Draw Figs. 1-4 (PNG and PDF) from the collected study and its task files."""
     from ..plot import save_figures, study_maps
+    from ..plot._data import STATISTICAL_CONTACTS
+    from .figure1 import same_area_maps
 
     maps = study_maps(out / "tasks")
+    pressures, labels = same_area_maps(maps, MAP_AREA) if maps else ([], [])
     figures = save_figures(
-        ds, out / "figures", formats=("png", "pdf"), maps=maps, target_area=MAP_AREA
+        ds,
+        out / "figures",
+        formats=("png", "pdf"),
+        maps=pressures or None,
+        labels=labels or None,
+        target_area=MAP_AREA,
+        min_area_per_cutoff=STATISTICAL_CONTACTS,
     )
-    return figures, _map_rows(maps)
+    return figures, _map_rows(maps, pressures, labels)
 
 
-def _outputs(out: Path, size, seeds, summary) -> dict:
+def _outputs(out: Path, size, seeds, summary, hard_wall=None) -> dict:
     """Collect the finished study, draw the figures, write ``report.md``; the JSON dict."""
     from .._io import write_netcdf_atomic
+    from ..plot._data import STATISTICAL_CONTACTS, eq4_outliers
     from ..studies import collect_study
     from ..studies.aggregate import aggregate_seeds
     from .report import report_lines, summary_lines, table_lines
@@ -233,8 +264,9 @@ def _outputs(out: Path, size, seeds, summary) -> dict:
     write_netcdf_atomic(ds, out / "demo.nc")  # atomic; a full disk is one clear error
     figures, map_rows = _figures(out, ds)
     rows = aggregate_seeds(ds)
-    summary_text = summary_lines(rows)
+    summary_text = summary_lines(rows, eq4=eq4_outliers(ds, STATISTICAL_CONTACTS))
     report = report_lines(
+        hard_wall=hard_wall,
         size=size,
         seeds=seeds,
         short_cutoff=SHORT_CUTOFF,
