@@ -6,8 +6,9 @@ stiffness :math:`k = E^*/(2a_0)` per area, softer than the substrate's on-site s
 contact therefore carry a small repulsive force and count in :math:`A_{rep}` (the
 paper's definition, :math:`g < a_0`). Its :math:`\kappa_{rep}` exceeds the continuum
 hard-wall value by about :math:`1 + \pi\delta/d_{rep}`; δ is set by the wall, not by the
-grid, so a larger grid does not remove it, a stiffer wall does. Both numbers are right:
-one is the paper's model, the other the continuum limit its "κ_rep ≈ 2" refers to.
+grid, so a larger grid does not remove it, a stiffer wall does. The paper reports κ_rep
+close to 2 for its own simulations with this wall; that the difference is the wall's
+finite stiffness is our explanation, and the hard-wall value computed here is its test.
 
 This module solves the non-adhesive hard wall (:func:`roughcontact.solve` with
 :class:`~roughcontact.HardWall`, constrained conjugate gradients) on the same surface and
