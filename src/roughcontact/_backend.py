@@ -51,8 +51,6 @@ def array_namespace(*xs, **kwargs):
     """
     if len(xs) == 1 and not kwargs:
         kind = type(xs[0])
-        if kind is np.ndarray:
-            return _NUMPY_NAMESPACE
         namespace = _NAMESPACES.get(kind)
         if namespace is None:
             namespace = array_api_compat.array_namespace(xs[0])
@@ -62,7 +60,10 @@ def array_namespace(*xs, **kwargs):
 
 
 #: The namespace of each array type met so far (array_namespace's answer for one array
-#: depends on its type alone; asked anew it costs ~10 us, dozens of times per iteration)
+#: depends on its type alone; asked anew it costs ~10 us, dozens of times per iteration).
+#: Filled on first use, NumPy's too: importing array_api_compat.numpy walks all of
+#: NumPy's lazy submodules (f2py, testing, ...), ~0.15 s that ``import roughcontact``
+#: need not pay.
 _NAMESPACES: dict = {}
 
 
@@ -82,8 +83,6 @@ def is_array(x) -> bool:
     """
     return type(x) is np.ndarray or is_array_api_obj(x)
 
-
-_NUMPY_NAMESPACE = array_api_compat.array_namespace(np.empty(0))
 
 #: Floating-point precisions the core computes in (float64 is the default).
 DTYPES = ("float64", "float32")

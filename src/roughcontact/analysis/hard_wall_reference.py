@@ -232,20 +232,6 @@ def band_width(repulsive_area: float, hard_wall_area: float, perimeter: float) -
 BAND_WARNING = 0.1
 
 
-def _substrate_from_attrs(attrs):
-    from ..elastic import Substrate
-
-    thickness = float(attrs.get("thickness", math.inf))
-    return Substrate(
-        tuple(int(n) for n in np.atleast_1d(attrs["grid"])),
-        contact_modulus=float(attrs["contact_modulus"]),
-        pixel_size=float(attrs["pixel_size"]),
-        thickness=None if math.isinf(thickness) else thickness,
-        poisson=float(attrs.get("poisson", 0.5)),
-        base=str(attrs.get("base") or "bonded"),
-    )
-
-
 def reference_fields(ds, heights, substrate, target, at, kappa_rep, d_rep, device=None) -> dict:
     """The hard-wall reference's fields of a path analysis (and its warnings).
 
@@ -261,7 +247,10 @@ def reference_fields(ds, heights, substrate, target, at, kappa_rep, d_rep, devic
                 "or write the path with this version of roughcontact)"
             ]
         }
-    substrate = _substrate_from_attrs(ds.attrs) if substrate is None else substrate
+    if substrate is None:
+        from ..elastic import substrate_from_attrs
+
+        substrate = substrate_from_attrs(ds.attrs)
     ref = hard_wall_reference(
         heights,
         substrate,

@@ -26,6 +26,13 @@ pressure/length) on the ``rfft2`` layout of the work grid (:meth:`multipliers`).
   minimise over a deflection on the whole work grid with the energy
   :math:`\tfrac12 w^T k w` and the interaction on the patch only, whose equilibrium
   leaves no pressure on the padding and is then the free-space solution.
+
+An operator describes itself in flat, NetCDF- and JSON-safe attributes (:meth:`to_attrs`,
+written into every path file), among them the *kind tag* ``substrate``: a text that begins
+with the kind's name followed by ``(`` (the operator's ``repr``).
+:func:`~roughcontact.elastic.attrs.substrate_from_attrs` reads the tag and rebuilds the
+operator through its kind's ``from_attrs``, so analysing a path needs no knowledge of the
+substrate's parameters.
 """
 
 from __future__ import annotations
@@ -111,6 +118,22 @@ class ElasticOperator(Protocol):
     def energy(self, deflection) -> float:
         r"""Elastic energy :math:`\tfrac12 a_0^2 \sum p\,w` (pressure × length³) of a
         deflection of the patch."""
+        ...
+
+    def to_attrs(self) -> dict:
+        """Flat attributes that rebuild this operator through :meth:`from_attrs`.
+
+        Values are scalars, strings or short integer lists (NetCDF- and JSON-safe); they
+        include ``contact_modulus`` (pressure), ``pixel_size`` (length), ``grid`` (the
+        patch, ``[nx, ny]``), ``nominal_area`` (length²), ``periodic`` (1/0) and the kind
+        tag ``substrate`` (the module docstring).
+        """
+        ...
+
+    @classmethod
+    def from_attrs(cls, attrs) -> ElasticOperator:
+        """The operator described by ``attrs`` (a mapping, e.g. a path dataset's attrs),
+        as written by :meth:`to_attrs` or by earlier versions of it."""
         ...
 
     def coarsened(self) -> ElasticOperator:

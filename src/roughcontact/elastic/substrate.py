@@ -148,6 +148,56 @@ class Substrate:
         text = ", ".join(f"{f.name}={getattr(self, f.name)!r}" for f in shown)
         return f"Substrate({text}{'' if self.periodic else ', periodic=False'})"
 
+    # ------------------------------------------------------------------ description
+    def to_attrs(self) -> dict:
+        """Flat attributes that rebuild this substrate (:meth:`from_attrs`); path files hold them.
+
+        ``contact_modulus`` (pressure), ``pixel_size`` (length), ``grid`` ``[nx, ny]``,
+        ``nominal_area`` (length²), ``thickness`` (length; inf for a half-space), ``poisson``,
+        ``base`` ("" for a half-space), ``periodic`` (1, or 0 for a free boundary) and the
+        kind tag ``substrate`` (the ``repr``). The names and values are those every earlier
+        version wrote, so old and new path files read alike.
+        """
+        half_space = self.thickness is None
+        return {
+            "contact_modulus": self.contact_modulus,
+            "pixel_size": self.pixel_size,
+            "grid": list(self.shape),
+            "nominal_area": self.nominal_area,
+            "thickness": math.inf if half_space else self.thickness,
+            "poisson": self.poisson,
+            "base": "" if half_space else self.base,
+            "periodic": int(self.periodic),
+            "substrate": repr(self),
+        }
+
+    @classmethod
+    def from_attrs(cls, attrs) -> Substrate:
+        """The substrate described by ``attrs`` (a mapping: :meth:`to_attrs`, a path's attrs).
+
+        ``grid``, ``contact_modulus`` and ``pixel_size`` are required; files of earlier
+        versions may lack the rest, which then take the values those versions implied: a
+        half-space (``thickness`` absent, inf or NaN), ``poisson`` 0.5, ``base`` "bonded"
+        (also for ""), periodic (``periodic`` absent). Values may be NumPy scalars or
+        arrays as read back from NetCDF.
+        """
+        for key in ("grid", "contact_modulus", "pixel_size"):
+            if key not in attrs:
+                raise ParameterError(
+                    f"substrate attributes need {key!r} (grid, contact_modulus, pixel_size); "
+                    f"got only {sorted(attrs)}"
+                )
+        thickness = float(attrs.get("thickness", math.inf))
+        return cls(
+            tuple(int(n) for n in np.atleast_1d(attrs["grid"])),
+            contact_modulus=float(attrs["contact_modulus"]),
+            pixel_size=float(attrs["pixel_size"]),
+            thickness=thickness if math.isfinite(thickness) else None,
+            poisson=float(attrs.get("poisson", 0.5)),
+            base=str(attrs.get("base") or "bonded"),
+            periodic=bool(int(attrs.get("periodic", 1))),
+        )
+
     def _make_multipliers(self):
         if not self.periodic:
             c = free_compliance(self.shape, self.pixel_size, self.contact_modulus)

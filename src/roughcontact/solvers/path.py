@@ -119,9 +119,10 @@ def approach_retract(
         ("approach"/"retract"),
         jump; ``heights`` (dims ``x``, ``y``: the rigid surface's heights h, length,
         float64 on the host). Attrs: the provenance of :func:`provenance` (surface
-        statistics, the substrate's contact_modulus, pixel_size, grid, thickness (inf:
-        half-space), poisson and base ("" for a half-space): enough to rebuild it;
-        interaction parameters), ``pull_off`` (per A0, >= 0: the magnitude of the most
+        statistics, the substrate's ``to_attrs()`` - for a ``Substrate`` its
+        contact_modulus, pixel_size, grid, thickness (inf: half-space), poisson, base (""
+        for a half-space), periodic: enough to rebuild it; interaction parameters),
+        ``pull_off`` (per A0, >= 0: the magnitude of the most
         negative load on retraction, or 0 if none is negative; NaN - ``null`` in JSON -
         when it was not measured: no retraction, or a retraction whose last step still has
         repulsive contact, e.g. a path starting inside contact), ``separated`` (1 if the
@@ -298,34 +299,30 @@ def provenance(heights, substrate, interaction) -> dict:
 
     Surface statistics (h_rms, h'rms, h''rms, d_rep = 4h'rms/h''rms: spectral on a
     periodic substrate, finite differences inside the window on a free one; the shortest
-    wavelength present), the substrate (E*, a0, grid, thickness (inf for a
-    half-space), ν, base ("" for a half-space), periodic (0 for a free boundary):
-    ``Substrate(grid, contact_modulus=..., pixel_size=..., thickness=None if inf,
-    poisson=..., base=base or "bonded", periodic=bool(periodic))`` rebuilds it) and the
-    interaction's parameters, each under its own key (units as in the rest of the API).
+    wavelength present), the substrate's own description (its ``to_attrs()``: for a
+    :class:`~roughcontact.Substrate` E*, a0, grid, nominal area, thickness (inf for a
+    half-space), ν, base ("" for a half-space), periodic (0 for a free boundary) and the
+    kind tag ``substrate``; :func:`roughcontact.elastic.substrate_from_attrs` rebuilds it)
+    and the interaction's parameters, each under its own key (units as in the rest of the
+    API).
     """
     from .. import __version__
     from ..surfaces.statistics import short_cutoff_estimate, statistics
 
     a0 = substrate.pixel_size
     stats = statistics(heights, pixel_size=a0, periodic=substrate.periodic)
+    described = dict(substrate.to_attrs())
+    kind_tag = described.pop("substrate")  # written after the interaction, as it always was
     attrs = {
         "rms_height": stats.rms_height,
         "rms_slope": stats.rms_slope,
         "rms_curvature": stats.rms_curvature,
         "predicted_d_rep": stats.predicted_d_rep,
         "short_cutoff_estimate": short_cutoff_estimate(heights, pixel_size=a0),
-        "contact_modulus": substrate.contact_modulus,
-        "pixel_size": a0,
-        "grid": list(substrate.shape),
-        "nominal_area": substrate.nominal_area,
-        "thickness": math.inf if substrate.thickness is None else substrate.thickness,
-        "poisson": substrate.poisson,
-        "base": "" if substrate.thickness is None else substrate.base,
-        "periodic": int(substrate.periodic),  # 0: free boundary
+        **described,
         "interaction_name": "hardwall" if interaction is None else interaction.name,
         "interaction": repr(interaction),
-        "substrate": repr(substrate),
+        "substrate": kind_tag,
         "roughcontact_version": __version__,
     }
     for key in _LAW_PARAMETERS:

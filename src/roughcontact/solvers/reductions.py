@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
+from array_api_compat import is_numpy_namespace  # cached per namespace
 
 from .._backend import array_namespace, is_numpy_array, to_numpy
 
@@ -75,7 +76,7 @@ def fetch(xp, scalars) -> list[float]:
     stacked, the values come over in one copy. Exact: every value is widened to float64
     (as ``float`` would) before stacking.
     """
-    if xp is _NUMPY_XP or not any(on_device(x) for x in scalars):
+    if is_numpy_namespace(xp) or not any(on_device(x) for x in scalars):
         return [float(x) for x in scalars]
     arrays = [i for i, x in enumerate(scalars) if on_device(x)]
     wide = [scalars[i] for i in arrays]
@@ -84,6 +85,3 @@ def fetch(xp, scalars) -> list[float]:
     for i, v in zip(arrays, to_numpy(xp.stack(wide)).tolist(), strict=True):
         values[i] = v
     return values
-
-
-_NUMPY_XP = array_namespace(np.empty(0))

@@ -65,7 +65,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import brentq
 
 from .._validate import ParameterError, positive
 from .westergaard import westergaard_full_contact_pressure
@@ -298,6 +297,8 @@ def johnson_sinusoid_thresholds(alpha) -> JohnsonSinusoidThresholds:
     JohnsonSinusoidThresholds
         ``alpha = 0``: pull-off 0, jump-in 1 (Westergaard).
     """
+    from scipy.optimize import brentq  # scipy on first use: import roughcontact stays light
+
     al = _alpha("alpha", alpha)
     if al >= JOHNSON_ALPHA_MAX:
         raise ParameterError(

@@ -48,9 +48,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.integrate import quad
-from scipy.optimize import brentq
-from scipy.special import erfc
 
 from .._validate import ParameterError, positive
 
@@ -172,11 +169,15 @@ def fuller_tabor_parameter(summit_height_std, summit_radius, contact_modulus, wo
 
 
 def _upper_tail(t):
+    from scipy.special import erfc  # scipy on first use: import roughcontact stays light
+
     return 0.5 * erfc(t / math.sqrt(2.0))
 
 
 def _tail_moment(n: float, t: float) -> float:
     """``\\int_t^inf (s - t)^n phi(s) ds`` for the standard normal density phi."""
+    from scipy.integrate import quad  # scipy on first use: import roughcontact stays light
+
     if t >= 0:  # factor out phi(t) so that quad sees an O(1) integrand
         f = quad(lambda u: u**n * math.exp(-u * t - 0.5 * u * u), 0, math.inf,
                  epsabs=0, epsrel=1e-10, limit=200)[0]  # fmt: skip
@@ -193,6 +194,9 @@ def _jkr_integrals(t, sig, R, E, w, branch):
     ``delta = delta0 D(A)``, ``F = w R P(A)`` with ``l = (w R^2/E*)^(1/3)``, ``delta0 = l^2/R``,
     ``D = A^2 - sqrt(2 pi A)``, ``P = (4/3) A^3 - sqrt(8 pi A^3)``.
     """
+    from scipy.integrate import quad  # scipy on first use: import roughcontact stays light
+    from scipy.optimize import brentq
+
     ell = (w * R * R / E) ** (1.0 / 3.0)
     d0 = ell * ell / R
     a_start = (2.0 * math.pi) ** (1.0 / 3.0) if branch == "loading" else (math.pi / 8) ** (1 / 3)

@@ -59,7 +59,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import brentq, minimize_scalar
 
 from .._validate import ParameterError, positive
 
@@ -142,6 +141,8 @@ def _griffith(mu: float, A: float, lam: float) -> float:
 
 
 def _solve_mu(A: float, lam: float) -> float:
+    from scipy.optimize import brentq  # scipy on first use: import roughcontact stays light
+
     hi = 1.0
     while _griffith(hi, A, lam) < 0.0:
         hi *= 4.0
@@ -308,6 +309,8 @@ def maugis_dugdale_pull_off(maugis_parameter) -> MaugisDugdalePullOff:
         ``coefficient`` goes monotonically from 2 (DMT, lambda -> 0) to 3/2 (JKR,
         lambda -> infinity).
     """
+    from scipy.optimize import minimize_scalar  # on first use: import roughcontact stays light
+
     lam = positive("maugis_parameter", maugis_parameter)
 
     def load(logA):

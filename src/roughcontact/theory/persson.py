@@ -38,7 +38,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy.special import erf, erfinv
 
 from .._validate import ParameterError, positive
 from .._validate import nonnegative_array as _nonneg
@@ -79,6 +78,8 @@ def persson_area(load, rms_slope, contact_modulus=1.0):
     float or ndarray
         A/A0 in [0, 1].
     """
+    from scipy.special import erf  # scipy on first use: import roughcontact stays light
+
     p = _nonneg("load", load)
     s = positive("rms_slope", rms_slope)
     E = positive("contact_modulus", contact_modulus)
@@ -90,6 +91,8 @@ def persson_load(area_fraction, rms_slope, contact_modulus=1.0):
 
     ``area_fraction`` in [0, 1) (1 needs an infinite load) [dimensionless].
     """
+    from scipy.special import erfinv  # scipy on first use: import roughcontact stays light
+
     a = _nonneg("area_fraction", area_fraction)
     if np.any(a >= 1):
         raise ParameterError(f"area_fraction must be in [0, 1), got {area_fraction!r}")
