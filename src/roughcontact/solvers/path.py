@@ -311,7 +311,12 @@ def provenance(heights, substrate, interaction) -> dict:
 
     a0 = substrate.pixel_size
     stats = statistics(heights, pixel_size=a0, periodic=substrate.periodic)
-    described = dict(substrate.to_attrs())
+    describe = getattr(substrate, "to_attrs", None)  # operators written before to_attrs
+    described = dict(describe()) if describe is not None else {
+        "contact_modulus": substrate.contact_modulus, "pixel_size": a0,
+        "grid": list(substrate.shape), "periodic": int(bool(substrate.periodic)),
+        "substrate": repr(substrate),
+    }  # fmt: skip
     kind_tag = described.pop("substrate")  # written after the interaction, as it always was
     attrs = {
         "rms_height": stats.rms_height,
