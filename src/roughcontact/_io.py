@@ -28,7 +28,9 @@ __all__ = [
     "STORAGE_ERRNOS",
     "WriteError",
     "as_write_error",
+    "check_writable",
     "netcdf_bytes",
+    "output_directory",
     "temporary_name",
     "write_bytes_atomic",
     "write_netcdf_atomic",
@@ -204,7 +206,67 @@ def read_netcdf(path, *, refusal: str):
     (one line) when it cannot be read. ``refusal`` says what the file was expected to be."""
     import xarray as xr
 
-    try:
-        return xr.load_dataset(path, engine="h5netcdf")
+    from ._files import regular_input
+
+    try:  # a FIFO or device is refused before it is opened (it could block forever)
+        return xr.load_dataset(regular_input(path, "file"), engine="h5netcdf")
+    except ParameterError as err:
+        raise ParameterError(f"{refusal}: {err}") from None
     except (OSError, ValueError) as err:
         raise ParameterError(f"{refusal}: {err}") from None
+
+
+def check_writable(path, what: str = "output") -> Path:
+    """Refuse, before any work, an output file that could not be written at the end.
+
+    ``path``'s directory must exist and take a new file there: a temporary file is
+    created (``O_EXCL``, never through a link) and removed at once, which also catches a
+    read-only mount that permission bits alone would not show. ``path`` itself must not
+    be a directory. Returns ``path`` as a :class:`~pathlib.Path`.
+
+    Raises
+    ------
+    ParameterError
+        One line naming ``what`` and ``path``: missing or read-only directory, ...
+    """
+    final = Path(os.fspath(path))
+    if "\0" in str(final):
+        raise ParameterError(f"{what}: a file name cannot hold a NUL character")
+    parent = final.parent
+    if not parent.is_dir():
+        why = "does not exist" if not parent.exists() else "is not a directory"
+        raise ParameterError(f"{what} {str(final)!r}: its directory {str(parent)!r} {why}")
+    if final.is_dir() and not final.is_symlink():
+        raise ParameterError(f"{what} {str(final)!r} is a directory; expected a file name")
+    tmp = temporary_name(final)
+    flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_NOFOLLOW", 0)
+    try:
+        os.close(os.open(tmp, flags, 0o600))
+    except OSError as err:
+        raise ParameterError(
+            f"{what} {str(final)!r} cannot be written: {err.strerror or err} in {str(parent)!r}"
+        ) from None
+    _remove(tmp)
+    return final
+
+
+def output_directory(path, what: str = "output directory") -> Path:
+    """Make the directory ``path`` (and its parents) for outputs; never write through a link.
+
+    A symbolic link (or any other non-directory) planted at ``path`` is replaced by a
+    fresh directory: files written there then stay inside the named output instead of
+    landing wherever the link points. An existing real directory is kept.
+    """
+    directory = Path(os.fspath(path))
+    try:
+        if directory.is_symlink() or (directory.exists() and not directory.is_dir()):
+            if directory.is_symlink() or directory.is_file():
+                directory.unlink()
+            else:
+                raise ParameterError(f"{what} {str(directory)!r} exists and is not a directory")
+        directory.mkdir(parents=True, exist_ok=True)
+    except OSError as err:
+        raise ParameterError(
+            f"{what} {str(directory)!r} cannot be created: {err.strerror or err}"
+        ) from None
+    return directory

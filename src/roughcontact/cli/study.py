@@ -92,10 +92,11 @@ def run(
     the summary, not counted as failures), 1 if any task failed, 2 on bad input.
     """
     from ..studies import load_study, run_study
-    from ..studies.cluster import tls_security
+    from ..studies.cluster import check_options, tls_security
 
     spec = load_study(study_file)  # validated before anything starts
     security = tls_security(tls_ca_file, tls_cert, tls_key)
+    check_options(scheduler, workers, security, dashboard)  # --workers too: before any output
     if not no_progress:
         click.echo(f"study {spec.name!r}: {len(spec.tasks)} tasks -> {out_dir}", err=True)
     summary = run_study(

@@ -17,10 +17,23 @@ import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from .._validate import MAX_PATH_STEPS, ParameterError, layer_thickness, step_indices
+from .._validate import (
+    MAX_PATH_STEPS,
+    MAX_TOL_FLOAT32,
+    ParameterError,
+    layer_thickness,
+    step_indices,
+)
 from ..interactions.registry import law_parameters
 from ..solvers.inputs import DEFAULT_TOL
 from .schema import KINDS, LAW_KEYS, SCHEMA, SWEEP_KEYS, UNITS, find, make_interaction
+
+#: the most tasks a study may have (seeds x parameter sets): checked before they are built
+MAX_TASKS = 100_000
+#: the largest study file read (a study lists parameters, not data)
+MAX_STUDY_BYTES = 16 * 2**20
+#: the deepest nesting of arrays and inline tables a study file may hold
+MAX_NESTING = 32
 
 __all__ = [
     "StudySpec",
@@ -71,21 +84,78 @@ def load_study(path) -> StudySpec:
     ParameterError
         Naming the key, the value and the accepted range of the first problem found.
     """
+    from .._files import read_input_bytes
+
     path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
+    try:  # a FIFO or device is refused before it is opened (it could block forever)
+        raw = read_input_bytes(path, "cannot read study file", "a TOML file", MAX_STUDY_BYTES + 1)
     except OSError as err:
         raise ParameterError(f"cannot read study file {str(path)!r}: {err.strerror}") from None
+    if len(raw) > MAX_STUDY_BYTES:
+        raise ParameterError(
+            f"study file {path.name}: larger than {MAX_STUDY_BYTES // 2**20} MiB; expected a "
+            "TOML study file (lists of parameters, not data)"
+        )
+    try:
+        text = raw.decode("utf-8")
     except UnicodeDecodeError as err:
         raise ParameterError(
             f"study file {path.name}: not a text file (byte {err.start} is not UTF-8); "
             "expected a TOML study file"
         ) from None
+    # a UTF-8 byte order mark (some Windows editors write one) is not TOML: dropped
+    text = text.removeprefix("\ufeff")
+    data = _parse_toml(path, text)
+    return study_from_dict(data, source=str(path), text=text, default_name=path.stem)
+
+
+def _parse_toml(path, text) -> dict:
+    """The parsed TOML, or one ParameterError line (also for values nested too deep)."""
+    depth = _nesting(text)
+    if depth > MAX_NESTING:
+        raise ParameterError(
+            f"study file {path.name}: values nested {depth} deep; accepted at most "
+            f"{MAX_NESTING} levels of arrays and inline tables"
+        )
     try:
-        data = tomllib.loads(text)
+        return tomllib.loads(text)
     except tomllib.TOMLDecodeError as err:
         raise ParameterError(f"study file {path.name}: not valid TOML: {err}") from None
-    return study_from_dict(data, source=str(path), text=text, default_name=path.stem)
+    except RecursionError:  # pragma: no cover - refused by _nesting first
+        raise ParameterError(f"study file {path.name}: values nested too deep") from None
+
+
+def _nesting(text: str) -> int:
+    """An upper bound of the nesting of arrays and inline tables: the running count of
+    opening brackets and braces outside strings and comments (tomllib recurses on each
+    level, so a deep one would end in a RecursionError and thousands of lines)."""
+    depth = deepest = 0
+    quote, i, n = None, 0, len(text)
+    while i < n:
+        c = text[i]
+        if quote:
+            if text.startswith(quote, i):
+                i += len(quote)
+                quote = None
+                continue
+            if c == "\\" and quote in ('"', '"""'):
+                i += 2
+                continue
+        elif c in "\"'":
+            quote = text[i : i + 3] if text.startswith(c * 3, i) else c
+            i += len(quote)
+            continue
+        elif c == "#":
+            j = text.find("\n", i)
+            i = n if j < 0 else j
+            continue
+        elif c in "[{":
+            depth += 1
+            deepest = max(deepest, depth)
+        elif c in "]}":
+            depth = max(depth - 1, 0)
+        i += 1
+    return deepest
 
 
 def _fail(message):
@@ -100,6 +170,11 @@ def _value(where, key, spec, value):
     if bad_type or not isinstance(value, spec.kind):
         expected = KINDS[spec.kind] + (f" ({spec.accepted})" if spec.accepted else "")
         _fail(f"{where} {key} = {value!r} has the wrong type: expected {expected}")
+    if isinstance(value, str) and any(ord(ch) < 32 and ch not in "\t\n" for ch in value):
+        _fail(
+            f"{where} {key} = {value!r} holds a control character (NUL, ...): accepted "
+            "printable text"
+        )
     if spec.test is not None and not spec.test(value):
         _fail(f"{where} {key} = {value!r} is out of range: accepted {spec.accepted}")
     return value
@@ -155,6 +230,13 @@ def study_from_dict(data, *, source="<dict>", text=None, default_name="study") -
                 f"[[cases]] #{i + 1} sets {clash[0]!r}, which is already a grid axis "
                 f"({clash[0]} = {axes[clash[0]]!r}); give it in one place only"
             )
+    count = len(cases) * len(seeds) * math.prod(len(v) for v in axes.values())
+    if count > MAX_TASKS:
+        sizes = " x ".join(f"{len(v)} {k}" for k, v in {**axes, "seeds": seeds}.items())
+        _fail(
+            f"{count} tasks ({sizes}, {len(cases)} [[cases]]) are too many: accepted at "
+            f"most {MAX_TASKS}; split the study"
+        )
     combos = []
     for case in cases:
         for values in itertools.product(*axes.values()):
@@ -231,8 +313,9 @@ def _settings(sections) -> dict:
             )
     out["output"]["fields"] = list(out["output"]["fields"])
     out["output"]["fields_at"] = list(out["output"]["fields_at"])
+    steps = path_steps(path)  # its own message ([path]): outside the try below
     try:  # the range approach_retract checks, known here: before any work
-        step_indices("fields_at", out["output"]["fields_at"], path_steps(path))
+        step_indices("fields_at", out["output"]["fields_at"], steps)
     except ParameterError as err:
         _fail(f"[output] {err}")
     # settings enter every task's key: a study that does not use this later key keeps
@@ -248,6 +331,11 @@ def _settings(sections) -> dict:
         _fail(
             f"[solver] tol = {solver['tol']!r} is out of range for dtype = 'float32': "
             f"accepted >= {DEFAULT_TOL['float32']:g} (its rounding floor)"
+        )
+    if solver["dtype"] == "float32" and solver["tol"] > MAX_TOL_FLOAT32:
+        _fail(
+            f"[solver] tol = {solver['tol']!r} is out of range for dtype = 'float32': "
+            f"accepted <= {MAX_TOL_FLOAT32:g} (a looser single-precision solve means nothing)"
         )
     if solver["dtype"] == "float64":
         del solver["dtype"]  # the default: keys as before the key existed (see above)
@@ -269,7 +357,14 @@ def approach_steps(path: dict) -> int:
                 f"{MAX_PATH_STEPS}; use a larger step"
             )
         n = int(math.floor(span + 1e-9)) + 1
-    return n + (len(path["lead_in"]) if path["control"] == "offset" else 0)
+    lead = len(path["lead_in"]) if path["control"] == "offset" else 0
+    if n + lead > MAX_PATH_STEPS:
+        given = f"{n} values" + (f" and {lead} lead_in steps" if lead else "")
+        _fail(
+            f"[path] {given} give {n + lead} steps: accepted at most {MAX_PATH_STEPS} "
+            "(approach, lead-in included)"
+        )
+    return n + lead
 
 
 def path_steps(path: dict) -> int:
@@ -303,6 +398,11 @@ def _resolve(combo, varying) -> dict:
     if (p["rms_slope"] is None) == (p["rms_height"] is None):
         _fail(f"[surface] give exactly one of rms_slope, rms_height ({where})")
     a0, size = p["pixel_size"], p["size"] * p["pixel_size"]
+    if p["rms_height"] is not None and not 1e-8 <= p["rms_height"] / a0 <= 1e8:
+        _fail(
+            f"[surface] rms_height = {p['rms_height']!r} is out of range: accepted in "
+            f"[1e-8, 1e8] * pixel_size = [{1e-8 * a0:g}, {1e8 * a0:g}] ({where})"
+        )
     if p["thickness"] is not None:  # relative to a0: the range Substrate checks
         try:
             layer_thickness("thickness", p["thickness"], a0)

@@ -213,18 +213,23 @@ def _map_rows(maps) -> list[dict]:
 
 def _figures(out: Path, ds):
     """Draw Figs. 1-4 (PNG and PDF) from the collected study and its task files."""
+    from .._io import output_directory
     from ..plot import save_figures, study_maps
 
     maps = study_maps(out / "tasks")
     figures = save_figures(
-        ds, out / "figures", formats=("png", "pdf"), maps=maps, target_area=MAP_AREA
+        ds,
+        output_directory(out / "figures"),  # a link planted there is replaced
+        formats=("png", "pdf"),
+        maps=maps,
+        target_area=MAP_AREA,
     )
     return figures, _map_rows(maps)
 
 
 def _outputs(out: Path, size, seeds, summary) -> dict:
     """Collect the finished study, draw the figures, write ``report.md``; the JSON dict."""
-    from .._io import write_netcdf_atomic
+    from .._io import write_bytes_atomic, write_netcdf_atomic
     from ..studies import collect_study
     from ..studies.aggregate import aggregate_seeds
     from .report import report_lines, summary_lines, table_lines
@@ -245,7 +250,8 @@ def _outputs(out: Path, size, seeds, summary) -> dict:
         run=summary,
         figures=figures,
     )
-    (out / "report.md").write_text("\n".join(report) + "\n", encoding="utf-8")
+    # atomic, and a link planted at report.md is replaced rather than written through
+    write_bytes_atomic(out / "report.md", ("\n".join(report) + "\n").encode("utf-8"))
     return {
         "table": rows,
         "summary": summary_text,
