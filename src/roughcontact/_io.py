@@ -238,7 +238,7 @@ def check_writable(path, what: str = "output") -> Path:
         raise ParameterError(f"{what} {str(final)!r}: its directory {str(parent)!r} {why}")
     if final.is_dir() and not final.is_symlink():
         raise ParameterError(f"{what} {str(final)!r} is a directory; expected a file name")
-    tmp = temporary_name(final)
+    tmp = final.with_name(f".{final.name}.{uuid.uuid4().hex[:12]}.probe")
     flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_NOFOLLOW", 0)
     try:
         os.close(os.open(tmp, flags, 0o600))
