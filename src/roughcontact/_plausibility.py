@@ -10,10 +10,11 @@ are:
   squares of an rms overflow float64) in any unit;
 * a surface that is not flat: the peak-to-valley height must exceed
   :data:`FLAT_RELATIVE` (1e-9) times the largest ``|h|`` (what is left below that is
-  floating-point rounding of a constant);
-* in metres (instrument files, or a ``.npy``/text file given a pixel size): a
+  floating-point rounding of a constant) and 1e-150 (below, squares underflow);
+* instrument files (their units are the file's, in metres once read): a
   peak-to-valley height in [:data:`MIN_HEIGHT_RANGE_M`, :data:`MAX_HEIGHT_RANGE_M`]
-  = [1 fm, 1 m] and a pixel size in [:data:`PIXEL_SIZE_M`] = [1 pm, 1 m];
+  = [1 fm, 1 m] and a pixel size in [:data:`PIXEL_SIZE_M`] = [1 pm, 1 m] (a ``.npy``
+  or text file's units are the caller's, who chose them);
 * the header against the data where the format allows it (Zygo MetroPro: the sizes of
   the intensity and phase blocks the header gives against each other and against the
   file's size).
@@ -55,11 +56,12 @@ PIXEL_SIZE_M = (1e-12, 1.0)
 def is_flat(heights) -> bool:
     """True when the finite ``heights`` are constant up to floating-point rounding.
 
-    Peak-to-valley ``<= FLAT_RELATIVE * max|h|`` (0 for exactly equal heights).
+    Peak-to-valley ``<= FLAT_RELATIVE * max|h|`` (0 for exactly equal heights) or
+    ``<= 1 / MAX_MAGNITUDE`` (1e-150: no roughness a float64 rms can hold).
     """
     h = np.asarray(heights, dtype=np.float64)
     top = float(np.max(np.abs(h)))
-    return not float(np.ptp(h)) > FLAT_RELATIVE * top
+    return not float(np.ptp(h)) > max(FLAT_RELATIVE * top, 1 / MAX_MAGNITUDE)
 
 
 def check_heights(heights, where: str, *, flat: bool = True) -> None:

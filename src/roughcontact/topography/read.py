@@ -136,8 +136,8 @@ def load_topography(
     ParameterError
         One line naming the file: missing, not a regular file (a FIFO, device or
         directory: refused before it is opened), corrupt or of an unknown format;
-        implausible data (non-finite, flat, or in metres a peak-to-valley height outside
-        [1 fm, 1 m] or a pixel size outside [1 pm, 1 m], see
+        implausible data (non-finite, flat, or of an instrument file a peak-to-valley
+        height outside [1 fm, 1 m] or a pixel size outside [1 pm, 1 m], see
         :mod:`roughcontact._plausibility`); an unknown
         channel (listing the available ones) or a channel that holds no heights;
         missing points without ``fill_missing``; SurfaceTopography not installed.
@@ -170,9 +170,8 @@ def _plausible(p, kind, topo) -> None:
 
     where = f"path {str(p)!r}"
     check_heights(topo.heights, where)
-    if topo.length_unit == "m":
+    if kind == "instrument":  # units from the file (a .npy's are the caller's)
         check_metres(topo.heights, topo.pixel_size, where)
-    if kind == "instrument":
         check_header(p, topo.info.get("format", ""), topo.shape)
 
 
