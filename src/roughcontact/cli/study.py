@@ -127,9 +127,10 @@ def run(
 @click.option("--no-timings", is_flag=True, help="Leave out wall-clock times (reproducible files).")
 def collect(out_dir, output, no_timings):
     """Combine the task files of study directory DIR into one NetCDF file."""
-    from .._io import write_netcdf_atomic
+    from .._io import check_writable, write_netcdf_atomic
     from ..studies import collect_study
 
+    check_writable(output, "-o/--output")  # before reading every task file
     ds = collect_study(out_dir, include_timings=not no_timings)
     write_netcdf_atomic(ds, output)  # a full disk: one line, exit 1, no file half-written
     click.echo(

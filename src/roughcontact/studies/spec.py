@@ -162,6 +162,11 @@ def _fail(message):
     raise ParameterError(f"study: {message}")
 
 
+def _inner(err) -> str:
+    """A nested error's text without its own ``study:`` prefix (said once, by _fail)."""
+    return str(err).removeprefix("study: ")
+
+
 def _value(where, key, spec, value):
     """Check one scalar against its type and range; return it (ints become floats)."""
     bad_type = isinstance(value, bool) and spec.kind is not bool
@@ -317,7 +322,7 @@ def _settings(sections) -> dict:
     try:  # the range approach_retract checks, known here: before any work
         step_indices("fields_at", out["output"]["fields_at"], steps)
     except ParameterError as err:
-        _fail(f"[output] {err}")
+        _fail(f"[output] {_inner(err)}")
     # settings enter every task's key: a study that does not use this later key keeps
     # the keys it had, so its directories written before it existed still --resume
     areas = list(out["output"].pop("fields_at_area"))
@@ -407,7 +412,7 @@ def _resolve(combo, varying) -> dict:
         try:
             layer_thickness("thickness", p["thickness"], a0)
         except ParameterError as err:
-            _fail(f"[substrate] {err} ({where})")
+            _fail(f"[substrate] {_inner(err)} ({where})")
         if p["periodic"] is False:
             _fail(f"[substrate] periodic = false needs a half-space (no thickness) ({where})")
     if p["short_cutoff"] < 2 * a0:
@@ -429,7 +434,7 @@ def _resolve(combo, varying) -> dict:
     try:
         law = make_interaction(p)
     except ParameterError as err:
-        _fail(f"[interaction] {err} ({where})")
+        _fail(f"[interaction] {_inner(err)} ({where})")
     values = law_parameters(law)
     for key in ("work_of_adhesion", "range", "stiffness"):
         p[key] = values.get(key, p[key])

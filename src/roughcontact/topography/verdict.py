@@ -45,6 +45,8 @@ __all__ = ["UNITS", "StickResult", "Verdict", "stick", "stickiness_verdict"]
 
 #: How many standard errors of H the verdict's band spans (2: about 95 %).
 HURST_SIGMAS = 2.0
+#: the widest Hurst band in standard errors (beyond, the band is all of (0, 1] and more)
+MAX_HURST_SIGMAS = 10.0
 #: Hurst exponents sampled across the band (odd: the fitted one is the middle one).
 HURST_SAMPLES = 9
 #: Smallest scales per decade of the sweep from lambda_c to a0.
@@ -148,7 +150,7 @@ def stickiness_verdict(
         strings with units; give ``contact_modulus`` E* or ``youngs_modulus`` with
         ``poisson``).
     hurst_sigmas : float
-        Half-width of the H band in standard errors (>= 0; 0: the fitted H only).
+        Half-width of the H band in standard errors (in [0, 10]; 0: the fitted H only).
 
     Returns
     -------
@@ -172,8 +174,11 @@ def stickiness_verdict(
         k = math.nan if isinstance(hurst_sigmas, bool) else float(hurst_sigmas)
     except (TypeError, ValueError):
         k = math.nan
-    if not (math.isfinite(k) and k >= 0):
-        raise ParameterError(f"hurst_sigmas must be a number >= 0, got {hurst_sigmas!r}")
+    if not (math.isfinite(k) and 0 <= k <= MAX_HURST_SIGMAS):
+        raise ParameterError(
+            f"hurst_sigmas must be a number in [0, {MAX_HURST_SIGMAS:g}] (standard errors of "
+            f"H; a wider band spans every H), got {hurst_sigmas!r}"
+        )
     a0, lam_c = measured.atomic_spacing, stats.measured_scale
     if a0 < lam_c:
         n = max(2, math.ceil(SWEEP_PER_DECADE * math.log10(lam_c / a0)) + 1)
@@ -561,7 +566,7 @@ def stick(
     fit_range : (float, float), optional
         Wavelengths [m] of the Hurst fit (default: see ``scale_statistics``).
     hurst_sigmas : float
-        Half-width of the H band in standard errors, default 2 (about 95 %).
+        Half-width of the H band in standard errors, default 2 (about 95 %), at most 10.
     simulate : bool
         Also run the paper's simulation on synthetic surfaces continuing the scan's
         spectrum down to ``atomic_spacing`` (:func:`~.simulate.simulate_stickiness`;
