@@ -548,3 +548,42 @@ def test_local_cluster_scratch_is_private_and_removed(monkeypatch):
     cluster.close(None, local)
     cluster.close(None, other)
     assert seen["closed"] and not scratch.exists()
+
+
+# --- fuzz: damaged inputs give one ParameterError line, never another exception --------
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_fuzzed_inputs_are_one_line_errors(tmp_path, seed):
+    rng = np.random.default_rng(seed)
+    buf = io.BytesIO()
+    np.save(buf, _surface(seed))
+    good_npy = bytearray(buf.getvalue())
+    flips = rng.integers(0, len(good_npy), size=20)
+    good_npy[flips[0] % 128] ^= 0xFF  # the header too
+    for i in flips[1:]:
+        good_npy[i] ^= 1 << int(rng.integers(8))
+    toml = bytearray(SMOKE.read_bytes())
+    for i in rng.integers(0, len(toml), size=5):
+        toml[i] = int(rng.integers(256))
+    cases = {
+        "a.npy": bytes(good_npy),
+        "b.npy": rng.bytes(int(rng.integers(0, 300))),
+        "c.txt": rng.bytes(200),
+        "d.toml": bytes(toml),
+        "e.nc": rng.bytes(512),
+    }
+    readers = {
+        ".npy": [load_heights, load_topography],
+        ".txt": [load_heights],
+        ".toml": [load_study],
+        ".nc": [lambda p: _io.read_netcdf(p, refusal="not a NetCDF file")],
+    }
+    for name, content in cases.items():
+        path = tmp_path / name
+        path.write_bytes(content)
+        for read in readers[path.suffix]:
+            try:
+                read(path)
+            except ParameterError as err:
+                assert "\n" not in str(err), str(err)

@@ -150,7 +150,7 @@ def npy_header(path, expected: str = "") -> tuple:
             if reader is None:
                 raise ValueError(f"unsupported .npy format version {version}")
             shape, fortran, dtype = reader(f)
-        except (ValueError, OSError, SyntaxError, TypeError) as err:
+        except Exception as err:  # noqa: BLE001 - numpy's parser: ValueError, TokenError, ...
             why = " ".join(str(err).split())[:200]
             raise _refuse(path, "path", f"corrupt .npy header ({why}){tail}") from None
         offset = f.tell()

@@ -253,17 +253,17 @@ def check_writable(path, what: str = "output") -> Path:
 def output_directory(path, what: str = "output directory") -> Path:
     """Make the directory ``path`` (and its parents) for outputs; never write through a link.
 
-    A symbolic link (or any other non-directory) planted at ``path`` is replaced by a
-    fresh directory: files written there then stay inside the named output instead of
-    landing wherever the link points. An existing real directory is kept.
+    A symbolic link planted at ``path`` is replaced by a fresh directory (the link
+    itself is removed, never what it points to): files written there then stay inside
+    the named output instead of landing wherever the link points. An existing real
+    directory is kept; any other file there is refused (ParameterError), not removed.
     """
     directory = Path(os.fspath(path))
     try:
-        if directory.is_symlink() or (directory.exists() and not directory.is_dir()):
-            if directory.is_symlink() or directory.is_file():
-                directory.unlink()
-            else:
-                raise ParameterError(f"{what} {str(directory)!r} exists and is not a directory")
+        if directory.is_symlink():
+            directory.unlink()
+        elif directory.exists() and not directory.is_dir():
+            raise ParameterError(f"{what} {str(directory)!r} exists and is not a directory")
         directory.mkdir(parents=True, exist_ok=True)
     except OSError as err:
         raise ParameterError(
