@@ -171,6 +171,9 @@ def _smoke(**changes):
         ({"surface__size": 2**63}, ["size"]),
         ({"surface__rms_slope": 1e300}, ["rms_slope", "1e4"]),
         ({"surface__rms_slope": 1e-300}, ["rms_slope", "1e-8"]),
+        ({"surface__rms_height": 1e300, "surface__rms_slope": None}, ["rms_height"]),
+        ({"substrate__contact_modulus": 1e50}, ["contact_modulus", "1e20"]),
+        ({"substrate__contact_modulus": 1e-40}, ["contact_modulus", "1e-20"]),
         ({"surface__seeds": list(range(1000)), "surface__hurst": [i / 400 for i in range(1, 201)]},
          ["tasks", "100000"]),
         ({"path__values": [0.1] * 150_000, "path__start": None}, ["150000", "100000"]),
@@ -180,6 +183,7 @@ def _smoke(**changes):
 )  # fmt: skip
 def test_study_bounds_are_refused_up_front(changes, words):
     data = _smoke(**changes)
+    data["surface"] = {k: v for k, v in data["surface"].items() if v is not None}
     if data["path"].get("start") is None:
         for key in ("start", "stop", "step"):
             data["path"].pop(key, None)
@@ -500,7 +504,10 @@ def test_startup_handler_only_for_the_console_script():
 @POSIX
 def test_ctrl_c_while_starting_is_one_line_and_130(tmp_path):
     script = tmp_path / "roughcontact"  # argv[0] names the console script
-    script.write_text("from roughcontact.cli.main import main\nmain()\n")
+    script.write_text(
+        "import sys\nfrom roughcontact.cli.main import main\n"
+        'if __name__ == "__main__":\n    sys.exit(main())\n'
+    )
     np.save(tmp_path / "s.npy", _surface())
     env = dict(os.environ, PYTHONPATH=os.pathsep.join(sys.path))
     for delay in (0.3, 0.6):

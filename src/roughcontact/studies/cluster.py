@@ -277,15 +277,19 @@ def connect(scheduler, workers, security=None, dashboard=False):
         # unmapped: page faults and TLB shootdowns cost the demo 73 s of CPU time in the
         # kernel (83 s wall; 37 s without). Our workers keep glibc's defaults (an explicit
         # MALLOC_TRIM_THRESHOLD_ in the environment still wins, as in Dask).
-        with dask.config.set({"distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None}):
-            cluster = _local_cluster(n, dashboard)
+        client = cluster = None
         try:
-            # not the default client: dask work of this process (xarray's NetCDF writes of the
-            # task files, a notebook's computations) stays local, uses no distributed locks
-            return Client(cluster, set_as_default=False), cluster
-        except BaseException:
-            cluster.close()
+            with dask.config.set(
+                {"distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None}
+            ):
+                cluster = _local_cluster(n, dashboard)
+            # not the default client: dask work of this process (xarray's NetCDF writes of
+            # the task files, a notebook's computations) stays local, no distributed locks
+            client = Client(cluster, set_as_default=False)
+        except BaseException:  # Ctrl-C while it starts too: closed, its scratch removed
+            close(client, cluster)
             raise
+        return client, cluster
     if isinstance(scheduler, Client):
         return scheduler, None
     if not isinstance(scheduler, str) or not scheduler.strip():

@@ -70,6 +70,12 @@ MAX_SIZE = 16384
 # beyond these the heights under- or overflow and every task would fail after the start
 _RMS_SLOPE = ("in [1e-8, 1e4]", lambda v: 1e-8 <= v <= 1e4)
 _RMS_HEIGHT = ("in [1e-8, 1e8] (units of pixel_size)", lambda v: 1e-8 <= v <= 1e8)
+# E* in a study's units: the solvers' states overflow beyond about 1e±30 (every task would
+# fail after the start), so a study takes the API's range narrowed to [1e-20, 1e20]
+_MODULUS = (
+    "in [1e-20, 1e20]",
+    lambda v: CONTACT_MODULUS.contains(v) and 1e-20 <= v <= 1e20,
+)
 SCHEMA = {
     "study": {"name": _k(str, sweep=False), "description": _k(str, sweep=False, default="")},
     "surface": {
@@ -91,7 +97,7 @@ SCHEMA = {
         ),
     },
     "substrate": {
-        "contact_modulus": _k(float, *_shared(CONTACT_MODULUS), default=1.0),
+        "contact_modulus": _k(float, *_MODULUS, default=1.0),
         "thickness": _k(float, *_POS),
         "poisson": _k(float, *_shared(POISSON), default=0.5),
         "base": _k(
