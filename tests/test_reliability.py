@@ -131,13 +131,25 @@ def test_toml_with_a_byte_order_mark_is_read(tmp_path):
     assert len(load_study(bom).tasks) == len(load_study(SMOKE).tasks)
 
 
-@pytest.mark.parametrize("opening, closing", [("[", "]"), ("{a=", "}")])
-def test_deeply_nested_toml_is_one_line(tmp_path, opening, closing):
+@pytest.mark.parametrize(
+    "text",
+    [
+        "x = " + "[" * 50_000 + "1" + "]" * 50_000,
+        "x = " + "{a=" * 50_000 + "1" + "}" * 50_000,
+        "x." + ".".join(["a"] * 50_000) + " = 1",  # tomllib: quadratic time, not recursion
+        "[" + ".".join(['"a"'] * 50_000) + "]",
+        "[[cases]]\nhurst." + ".".join(["b"] * 30_000) + " = 1",
+    ],
+    ids=["arrays", "inline-tables", "dotted-key", "dotted-table", "dotted-case"],
+)
+def test_deeply_nested_toml_is_one_line(tmp_path, text):
     deep = tmp_path / "deep.toml"
-    deep.write_text("x = " + opening * 50_000 + "1" + closing * 50_000 + "\n")
+    deep.write_text(text + "\n")
+    t0 = time.monotonic()
     with pytest.raises(ParameterError, match="nested") as err:
         load_study(deep)
     assert "\n" not in str(err.value)
+    assert time.monotonic() - t0 < 5
 
 
 def test_nesting_count_ignores_brackets_in_strings_and_comments(tmp_path):

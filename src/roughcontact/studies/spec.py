@@ -13,6 +13,7 @@ import hashlib
 import itertools
 import json
 import math
+import re
 import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -114,8 +115,8 @@ def _parse_toml(path, text) -> dict:
     depth = _nesting(text)
     if depth > MAX_NESTING:
         raise ParameterError(
-            f"study file {path.name}: values nested {depth} deep; accepted at most "
-            f"{MAX_NESTING} levels of arrays and inline tables"
+            f"study file {path.name}: values or keys nested {depth} deep; accepted at most "
+            f"{MAX_NESTING} levels of arrays, inline tables and dotted keys"
         )
     try:
         return tomllib.loads(text)
@@ -125,40 +126,33 @@ def _parse_toml(path, text) -> dict:
         raise ParameterError(f"study file {path.name}: values nested too deep") from None
 
 
+#: TOML strings and comments (their brackets and dots are text, not structure)
+_STRINGS = re.compile(
+    r'"""[\s\S]*?"""' r"|'''[\s\S]*?'''" r'|"(?:\\.|[^"\\\n])*"' r"|'[^'\n]*'|#[^\n]*"
+)
+#: a dot of a dotted key (a.b.c), not one inside a number (1.5, a time's 00.999)
+_KEY_DOT = re.compile(r"(?<![0-9])\.|\.(?![0-9])")
+
+
 def _nesting(text: str) -> int:
-    """An upper bound of the nesting of arrays and inline tables: the running count of
-    opening brackets and braces outside strings and comments (tomllib recurses on each
-    level, so a deep one would end in a RecursionError and thousands of lines)."""
+    """An upper bound of the nesting a TOML text asks for: of arrays and inline tables
+    (the running count of brackets and braces) and of dotted keys (the dots of one line),
+    outside strings and comments. tomllib recurses on each level of the former (a deep
+    one ends in a RecursionError and thousands of lines) and takes quadratic time in the
+    latter (a key of 50,000 parts: minutes)."""
+    bare = _STRINGS.sub('""', text)
     depth = deepest = 0
-    quote, i, n = None, 0, len(text)
-    while i < n:
-        c = text[i]
-        if quote:
-            if text.startswith(quote, i):
-                i += len(quote)
-                quote = None
-                continue
-            if c == "\\" and quote in ('"', '"""'):
-                i += 2
-                continue
-        elif c in "\"'":
-            quote = text[i : i + 3] if text.startswith(c * 3, i) else c
-            i += len(quote)
-            continue
-        elif c == "#":
-            j = text.find("\n", i)
-            i = n if j < 0 else j
-            continue
-        elif c in "[{":
-            depth += 1
-            deepest = max(deepest, depth)
-        elif c in "]}":
-            depth = max(depth - 1, 0)
-        i += 1
-    return deepest
+    for match in re.finditer(r"[\[\]{}]", bare):
+        depth = depth + 1 if match.group() in "[{" else max(depth - 1, 0)
+        deepest = max(deepest, depth)
+    dots = max((len(_KEY_DOT.findall(line)) for line in bare.splitlines()), default=0)
+    return max(deepest, dots)
 
 
 def _fail(message):
+    message = str(message)
+    if len(message) > 1000:  # a value of 10^5 entries: its head and the accepted range
+        message = f"{message[:500]} ... {message[-400:]}"
     raise ParameterError(f"study: {message}")
 
 
