@@ -349,6 +349,24 @@ def test_unwritable_output_is_refused_before_any_work(tmp_path, command, monkeyp
     _one_line(CliRunner().invoke(main, args), "does not exist")
 
 
+def test_output_directories_are_checked_before_any_work(tmp_path):
+    (tmp_path / "file").write_text("")
+    bad = str(tmp_path / "file" / "out")
+    with pytest.raises(ParameterError, match="not a directory"):
+        _io.check_directory_writable(bad)
+    with pytest.raises(ParameterError, match="exists and is not a directory"):
+        _io.check_directory_writable(tmp_path / "file")
+    assert _io.check_directory_writable(tmp_path / "new" / "deeper") == tmp_path / "new" / "deeper"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["file"]  # nothing created
+    scan = str(DATA / "di-1.di")
+    for args in (
+        ["figures", str(tmp_path), "-o", bad],
+        ["stick", scan, "--modulus", "1 GPa", "--work-of-adhesion", "50 mJ/m^2", "-o", bad],
+        ["demo", "--size", "16", "-o", bad],
+    ):
+        _one_line(CliRunner().invoke(main, args), "not a directory")
+
+
 def test_output_directory_replaces_a_planted_link(tmp_path):
     elsewhere = tmp_path / "elsewhere"
     elsewhere.mkdir()

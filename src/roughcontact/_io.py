@@ -28,6 +28,7 @@ __all__ = [
     "STORAGE_ERRNOS",
     "WriteError",
     "as_write_error",
+    "check_directory_writable",
     "check_writable",
     "netcdf_bytes",
     "output_directory",
@@ -248,6 +249,42 @@ def check_writable(path, what: str = "output") -> Path:
         ) from None
     _remove(tmp)
     return final
+
+
+def check_directory_writable(path, what: str = "output directory") -> Path:
+    """Refuse, before any work, an output directory that could not be made or written.
+
+    ``path`` must be a directory or not exist yet; the nearest existing one of it and
+    its parents must take a new file (a probe file is created there and removed at once,
+    which also catches a read-only mount). Nothing else is created.
+
+    Raises
+    ------
+    ParameterError
+        One line naming ``what`` and ``path``.
+    """
+    directory = Path(os.fspath(path))
+    if "\0" in str(directory):
+        raise ParameterError(f"{what}: a directory name cannot hold a NUL character")
+    if directory.exists() and not directory.is_dir():
+        raise ParameterError(f"{what} {str(directory)!r} exists and is not a directory")
+    base = directory
+    while not base.exists() and not base.is_symlink() and base != base.parent:
+        base = base.parent
+    if not base.is_dir():
+        raise ParameterError(
+            f"{what} {str(directory)!r} cannot be created: {str(base)!r} is not a directory"
+        )
+    probe = base / f".roughcontact-probe-{uuid.uuid4().hex[:12]}"
+    flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_NOFOLLOW", 0)
+    try:
+        os.close(os.open(probe, flags, 0o600))
+    except OSError as err:
+        raise ParameterError(
+            f"{what} {str(directory)!r} cannot be written: {err.strerror or err} in {str(base)!r}"
+        ) from None
+    _remove(probe)
+    return directory
 
 
 def output_directory(path, what: str = "output directory") -> Path:

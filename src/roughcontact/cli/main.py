@@ -843,6 +843,10 @@ def demo(size, seed, study_size, seeds, output, as_json):
         raise ParameterError(f"--seeds must be >= 1, got {seeds}")
     if study_size and study_size < 8:
         raise ParameterError(f"--study-size must be 0 (no study) or >= 8, got {study_size}")
+    if study_size:
+        from .._io import check_directory_writable
+
+        check_directory_writable(output, "-o/--output")  # before the path is computed
 
     def progress(i, n, res):
         if not as_json:

@@ -169,7 +169,10 @@ def stick(scan, channel, modulus, work, poisson, range_, tip_radius, reliability
     from ..topography.verdict import stick as run
 
     if out_dir is not None:
+        from .._io import check_directory_writable
+
         DPI.check("--dpi", dpi)
+        check_directory_writable(out_dir, "-o/--output")  # before the analysis
     result = run(
         scan,
         modulus=modulus,

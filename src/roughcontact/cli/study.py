@@ -167,6 +167,7 @@ def report(source, out_dir, confidence, dpi):
     versions.json, figures/fig2-4 (PNG) and README.md, which takes the claims of
     Pastewka & Robbins (2014) one by one and puts the study's numbers beside them.
     """
+    from .._io import check_directory_writable
     from .._validate import DPI
     from ..studies.report import write_report
 
@@ -175,6 +176,7 @@ def report(source, out_dir, confidence, dpi):
             f"must be in (0, 1), got {confidence!r}", param_hint="--confidence"
         )
     DPI.check("dpi", dpi)
+    check_directory_writable(out_dir, "-o/--output")  # before reading the study
     result = write_report(source, out_dir, confidence=confidence, dpi=dpi)
     c = result["claims"]
     crit = c["eq10_criterion"]["measured_kappa_rep"]
