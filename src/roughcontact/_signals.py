@@ -124,4 +124,3 @@ def exit_code(err: BaseException) -> int:
         seen.add(id(err))
         err = err.__cause__ or err.__context__
     return EXIT_INTERRUPTED
-
