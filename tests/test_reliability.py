@@ -413,6 +413,10 @@ def test_a_task_file_of_another_study_is_not_counted(tmp_path, make_study):
     assert list(ds["status"].values) == ["done", "missing"]
     assert ds["failure_reason"].values[1] == FOREIGN
     assert ds.attrs["tasks_foreign"] == 1 and ds.attrs["tasks_done"] == 1
+    from roughcontact.studies.store import task_keys
+
+    assert task_keys(out)["task-00001.nc"] == "0" * 64  # Fig. 1's maps skip that file
+    assert task_keys(out / "absent") is None
 
 
 # --- plausibility at the reading edge ------------------------------------------------

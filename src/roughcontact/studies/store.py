@@ -42,6 +42,7 @@ __all__ = [
     "failure_path",
     "read_manifest",
     "task_files",
+    "task_keys",
     "task_parameters",
     "task_path",
     "write_failure",
@@ -70,6 +71,19 @@ def task_files(out_dir) -> list[Path]:
     is left out (never followed; opening a FIFO would block).
     """
     return sorted(p for p in Path(out_dir).glob(_TASK_FILES) if is_regular(p))
+
+
+def task_keys(out_dir) -> dict | None:
+    """``{task file name: task key}`` of the manifest, or None without a readable one.
+
+    A task file is the study's own only if its ``task_key`` attribute is the key here:
+    a file copied in from another study (or run with other parameters) is not.
+    """
+    try:
+        manifest = read_manifest(out_dir)
+        return {task_path(".", t["id"]).name: t.get("key") for t in manifest["tasks"]}
+    except (ParameterError, KeyError, TypeError):
+        return None
 
 
 def is_regular(path) -> bool:
