@@ -169,7 +169,7 @@ def _value(where, key, spec, value):
     if bad_type or not isinstance(value, spec.kind):
         expected = KINDS[spec.kind] + (f" ({spec.accepted})" if spec.accepted else "")
         _fail(f"{where} {key} = {value!r} has the wrong type: expected {expected}")
-    if isinstance(value, str) and any(ord(ch) < 32 and ch not in "\t\n" for ch in value):
+    if isinstance(value, str) and any(ord(ch) < 32 and ch not in "\t\n\r" for ch in value):
         _fail(
             f"{where} {key} = {value!r} holds a control character (NUL, ...): accepted "
             "printable text"
