@@ -845,17 +845,10 @@ def demo(size, seed, study_size, seeds, output, as_json):
         raise ParameterError(f"--study-size must be 0 (no study) or >= 8, got {study_size}")
     if study_size:
         from .._io import check_directory_writable
-        from ..studies import study_from_dict
-        from ..studies.spec import MAX_TASKS
-        from ..workflows.demo import ADHESION_LENGTHS, demo_study
+        from ..workflows.demo import check_demo_study
 
-        if seeds * len(ADHESION_LENGTHS) > MAX_TASKS:
-            raise ParameterError(
-                f"--seeds must be <= {MAX_TASKS // len(ADHESION_LENGTHS)} (a study of at "
-                f"most {MAX_TASKS} tasks), got {seeds}"
-            )
-        study_from_dict(demo_study(study_size, [1]))  # --study-size et al., before any work
-        check_directory_writable(output, "-o/--output")  # before the path is computed
+        check_demo_study(study_size, seeds)  # before the path is computed
+        check_directory_writable(output, "-o/--output")
 
     def progress(i, n, res):
         if not as_json:

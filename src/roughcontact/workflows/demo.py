@@ -26,10 +26,13 @@ from pathlib import Path
 
 import numpy as np
 
+from ..errors import ParameterError
+
 __all__ = [
     "ADHESION_LENGTHS",
     "MAP_AREA",
     "SHORT_CUTOFF",
+    "check_demo_study",
     "demo_path",
     "demo_study",
     "run_demo_study",
@@ -170,6 +173,20 @@ def demo_study(size: int, seeds) -> dict:
         # (the state figure1 shows); a few 100 kB in all instead of 0.5 MB per step
         "output": {"fields_at_area": [MAP_AREA], "fields": ["pressure"]},
     }
+
+
+def check_demo_study(size: int, seeds: int) -> None:
+    """Refuse (ParameterError, one line) a demo study of ``seeds`` realisations on
+    ``size``² grids that the study's checks would refuse, before any work."""
+    from ..studies import study_from_dict
+    from ..studies.spec import MAX_TASKS
+
+    most = MAX_TASKS // len(ADHESION_LENGTHS)
+    if seeds > most:
+        raise ParameterError(
+            f"--seeds must be <= {most} (a study of at most {MAX_TASKS} tasks), got {seeds}"
+        )
+    study_from_dict(demo_study(size, [1]))
 
 
 def run_demo_study(out_dir, *, size: int = 256, seeds=(1, 2, 3, 4, 5), workers=None, progress=True):
