@@ -173,6 +173,20 @@ def test_constant_surface_is_flat_for_every_reader(tmp_path, value):
     _one_line(r, "flat")
 
 
+def test_a_topography_given_directly_is_checked_too():
+    from roughcontact.topography import Topography
+    from roughcontact.topography.verdict import stick
+
+    rubber = {"modulus": "1 GPa", "work_of_adhesion": "50 mJ/m^2"}
+    huge = Topography(_surface() * 1e300, 1e-8, info={"length_unit": "m"})
+    with pytest.raises(ParameterError, match="out of range") as err:
+        stick(huge, **rubber)
+    assert "flat" not in str(err.value)
+    flat = Topography(np.full((16, 16), 1e-6), 1e-8, info={"length_unit": "m"})
+    with pytest.raises(ParameterError, match="flat surface"):
+        stick(flat, **rubber)
+
+
 def test_huge_heights_are_out_of_range_not_flat(tmp_path):
     np.save(tmp_path / "big.npy", _surface() * 1e300)
     with pytest.raises(ParameterError) as err:

@@ -595,6 +595,9 @@ def stick(
     if tip is not None and given_cutoff is not None:
         raise ParameterError("give tip_radius or reliability_cutoff, not both")
     topo = _read(scan, channel, pixel_size, height_unit, periodic, Topography)
+    from .._plausibility import check_heights
+
+    check_heights(topo.heights, "scan")  # |h| past 1e150 is out of range, not "flat"
     raw = float(np.std(topo.heights))
     topo = _detrend(topo, detrend)
     if not float(np.std(topo.heights)) > 1e-12 * raw:  # what is left is round-off
