@@ -28,7 +28,10 @@ __all__ = [
     "STORAGE_ERRNOS",
     "WriteError",
     "as_write_error",
+    "check_directory_writable",
+    "check_writable",
     "netcdf_bytes",
+    "output_directory",
     "temporary_name",
     "write_bytes_atomic",
     "write_netcdf_atomic",
@@ -204,7 +207,103 @@ def read_netcdf(path, *, refusal: str):
     (one line) when it cannot be read. ``refusal`` says what the file was expected to be."""
     import xarray as xr
 
-    try:
-        return xr.load_dataset(path, engine="h5netcdf")
+    from ._files import regular_input
+
+    try:  # a FIFO or device is refused before it is opened (it could block forever)
+        return xr.load_dataset(regular_input(path, "file"), engine="h5netcdf")
+    except ParameterError as err:
+        raise ParameterError(f"{refusal}: {err}") from None
     except (OSError, ValueError) as err:
         raise ParameterError(f"{refusal}: {err}") from None
+
+
+def check_writable(path, what: str = "output") -> Path:
+    """Refuse, before any work, an output file that could not be written at the end.
+
+    ``path``'s directory must exist and take a new file there: a temporary file is
+    created (``O_EXCL``, never through a link) and removed at once, which also catches a
+    read-only mount that permission bits alone would not show. ``path`` itself must not
+    be a directory. Returns ``path`` as a :class:`~pathlib.Path`.
+
+    Raises
+    ------
+    ParameterError
+        One line naming ``what`` and ``path``: missing or read-only directory, ...
+    """
+    final = Path(os.fspath(path))
+    if "\0" in str(final):
+        raise ParameterError(f"{what}: a file name cannot hold a NUL character")
+    parent = final.parent
+    if not parent.is_dir():
+        why = "does not exist" if not parent.exists() else "is not a directory"
+        raise ParameterError(f"{what} {str(final)!r}: its directory {str(parent)!r} {why}")
+    if final.is_dir() and not final.is_symlink():
+        raise ParameterError(f"{what} {str(final)!r} is a directory; expected a file name")
+    tmp = final.with_name(f".{final.name}.{uuid.uuid4().hex[:12]}.probe")
+    flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_NOFOLLOW", 0)
+    try:
+        os.close(os.open(tmp, flags, 0o600))
+    except OSError as err:
+        raise ParameterError(
+            f"{what} {str(final)!r} cannot be written: {err.strerror or err} in {str(parent)!r}"
+        ) from None
+    _remove(tmp)
+    return final
+
+
+def check_directory_writable(path, what: str = "output directory") -> Path:
+    """Refuse, before any work, an output directory that could not be made or written.
+
+    ``path`` must be a directory or not exist yet; the nearest existing one of it and
+    its parents must take a new file (a probe file is created there and removed at once,
+    which also catches a read-only mount). Nothing else is created.
+
+    Raises
+    ------
+    ParameterError
+        One line naming ``what`` and ``path``.
+    """
+    directory = Path(os.fspath(path))
+    if "\0" in str(directory):
+        raise ParameterError(f"{what}: a directory name cannot hold a NUL character")
+    if directory.exists() and not directory.is_dir():
+        raise ParameterError(f"{what} {str(directory)!r} exists and is not a directory")
+    base = directory
+    while not base.exists() and not base.is_symlink() and base != base.parent:
+        base = base.parent
+    if not base.is_dir():
+        raise ParameterError(
+            f"{what} {str(directory)!r} cannot be created: {str(base)!r} is not a directory"
+        )
+    probe = base / f".roughcontact-probe-{uuid.uuid4().hex[:12]}"
+    flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_NOFOLLOW", 0)
+    try:
+        os.close(os.open(probe, flags, 0o600))
+    except OSError as err:
+        raise ParameterError(
+            f"{what} {str(directory)!r} cannot be written: {err.strerror or err} in {str(base)!r}"
+        ) from None
+    _remove(probe)
+    return directory
+
+
+def output_directory(path, what: str = "output directory") -> Path:
+    """Make the directory ``path`` (and its parents) for outputs; never write through a link.
+
+    A symbolic link planted at ``path`` is replaced by a fresh directory (the link
+    itself is removed, never what it points to): files written there then stay inside
+    the named output instead of landing wherever the link points. An existing real
+    directory is kept; any other file there is refused (ParameterError), not removed.
+    """
+    directory = Path(os.fspath(path))
+    try:
+        if directory.is_symlink():
+            directory.unlink()
+        elif directory.exists() and not directory.is_dir():
+            raise ParameterError(f"{what} {str(directory)!r} exists and is not a directory")
+        directory.mkdir(parents=True, exist_ok=True)
+    except OSError as err:
+        raise ParameterError(
+            f"{what} {str(directory)!r} cannot be created: {err.strerror or err}"
+        ) from None
+    return directory

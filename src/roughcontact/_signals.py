@@ -11,6 +11,9 @@ instead of :data:`EXIT_INTERRUPTED` (130 = 128 + 2). Inside :func:`deferred` (th
 atomic file writes of :mod:`roughcontact._io`) either signal is held back until the
 write is complete, then raised.
 
+Before a command runs (while the modules load), :mod:`roughcontact._startup` makes
+Ctrl-C on the command line exit with one line and code 130, without a traceback.
+
 Signal handlers belong to the main thread: elsewhere both are no-ops. Only default
 dispositions are replaced: a signal the process ignores (``SIG_IGN``, e.g. SIGINT of a
 background job) stays ignored, and a program's own handler stays in charge.
@@ -21,6 +24,8 @@ from __future__ import annotations
 import contextlib
 import signal
 import threading
+
+from ._startup import exit_interrupted
 
 __all__ = [
     "EXIT_INTERRUPTED",
@@ -47,8 +52,9 @@ class _State:
 
 _state = _State()
 #: the dispositions :func:`interruptible` replaces: Python's and the system's defaults
-#: (None: a handler not installed from Python)
-_DEFAULTS = (signal.SIG_DFL, signal.default_int_handler, None)
+#: (None: a handler not installed from Python), and the start-up handler of
+#: :mod:`roughcontact._startup` (exit at once: nothing to save before a command runs)
+_DEFAULTS = (signal.SIG_DFL, signal.default_int_handler, None, exit_interrupted)
 
 
 def _main_thread() -> bool:

@@ -152,13 +152,25 @@ def surface_seed(name: str, value):
     return SEED.check(name, value)
 
 
+#: the loosest tolerance in float32: beyond it a single-precision solve stops before its
+#: answer means anything (A_rep 0.110 at tol 0.999 against 0.026 converged)
+MAX_TOL_FLOAT32 = 0.1
+
+
 def tolerance(name: str, value, precision: str = "float64", floor: float = 1e-6) -> float:
-    """Check a solver tolerance: :data:`TOL`, and ``>= floor`` in float32 (its rounding)."""
+    """Check a solver tolerance: :data:`TOL`, and in float32 ``[floor, MAX_TOL_FLOAT32]``
+    (below the floor its rounding hides the residual, above 0.1 the answer is noise)."""
     tol = TOL.check(name, value)
     if precision == "float32" and tol < floor:
         raise ParameterError(
             f"{name} must be >= {floor:g} with dtype='float32' (single precision cannot "
             f"resolve smaller residuals), got {value!r}; use dtype='float64'"
+        )
+    if precision == "float32" and tol > MAX_TOL_FLOAT32:
+        raise ParameterError(
+            f"{name} must be in [{floor:g}, {MAX_TOL_FLOAT32:g}] with dtype='float32' (a "
+            f"looser single-precision solve stops before its answer means anything), got "
+            f"{value!r}"
         )
     return tol
 

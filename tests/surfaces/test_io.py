@@ -46,7 +46,7 @@ def test_missing_file(tmp_path):
 
 
 def test_directory_is_not_a_file(tmp_path):
-    with pytest.raises(ParameterError, match="no such file"):
+    with pytest.raises(ParameterError, match="is a directory, not a regular file"):
         load_heights(tmp_path)
 
 

@@ -73,8 +73,10 @@ def figures(source, out_dir, formats, target_area, dpi):
     import matplotlib
 
     matplotlib.use("Agg")
+    from .._io import check_directory_writable
     from ..plot import save_figures
 
+    check_directory_writable(out_dir, "-o/--output")  # before reading the study
     ds, maps = _load(source)
     written = save_figures(ds, out_dir, formats, maps=maps, dpi=dpi, target_area=target_area)
     for paths in written.values():

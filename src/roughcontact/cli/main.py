@@ -6,11 +6,12 @@ from __future__ import annotations
 import json
 import math
 import sys
+import warnings
 from pathlib import Path
 
 import click
 
-from .._io import WriteError
+from .._io import WriteError, check_writable
 from .._signals import EXIT_TERMINATED, deferred, exit_code, interruptible
 from .._validate import (
     GRID_SIZE,
@@ -25,6 +26,7 @@ from .._validate import (
 )
 from ..interactions.registry import make_law
 from ..interactions.registry import names as interaction_names
+from ._outputs import check_fields_file, save_fields_file
 
 EXIT_BAD_INPUT = 2
 EXIT_NOT_CONVERGED = 3
@@ -45,6 +47,12 @@ def _fail(message: str, code: int = EXIT_BAD_INPUT):
     sys.exit(code)
 
 
+def _warning_line(message, category, filename, lineno, file=None, line=None):
+    """A warning as one line on stderr (not Python's two, with the source line)."""
+    text = " ".join(str(message).split())
+    click.echo(f"roughcontact: warning: {text}", err=True)
+
+
 def _json(obj) -> str:
     """One JSON object: NaN and infinities become null (JSON has neither)."""
     return json.dumps(json_safe(obj), allow_nan=False)
@@ -55,7 +63,9 @@ class _Group(click.Group):
 
     def invoke(self, ctx):
         try:
-            with interruptible():  # SIGTERM stops a command as Ctrl-C does (exit 143, 130)
+            # SIGTERM stops a command as Ctrl-C does (exit 143, 130); warnings in one line
+            with interruptible(), warnings.catch_warnings():
+                warnings.showwarning = _warning_line
                 return super().invoke(ctx)
         except ParameterError as err:
             _fail(str(err))
@@ -323,6 +333,7 @@ def surface(
 
     if (rms_slope is None) == (rms_height is None):
         raise ParameterError("give exactly one of --rms-slope or --rms-height")
+    check_writable(out, "OUT")  # before any work: a missing or read-only directory
     h = self_affine(
         (size, size_y or size),
         hurst=hurst,
@@ -357,7 +368,7 @@ def surface(
     "--save-fields",
     type=click.Path(dir_okay=False),
     default=None,
-    help="Write pressure, gap and deflection to this .npz file.",
+    help="Write pressure, gap and deflection to this .npz file (the name must end in .npz).",
 )
 @_surface_file_options
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
@@ -395,7 +406,13 @@ def contact(
 
     if (load is None) == (offset is None):
         raise ParameterError("give exactly one of --load or --offset")
+    if save_fields is not None:
+        check_fields_file(save_fields)
     h, pixel_size, surface = _load_surface(surface_file, channel, detrend, fill_missing, pixel_size)
+    if non_periodic and min(h.shape) < 3:  # as path and the statistics refuse it
+        raise ParameterError(
+            f"heights must be at least 3 x 3 points for --non-periodic, got {h.shape}"
+        )
     sub = _substrate(h.shape, modulus, pixel_size, thickness, poisson, base, not non_periodic)
     law = _make_interaction(
         interaction, work, range_, stiffness, core_stiffness, modulus, pixel_size, adhesion_length
@@ -405,12 +422,7 @@ def contact(
         dtype=dtype,
     )  # fmt: skip
     if save_fields:
-        import numpy as np
-
-        host = res.to_numpy()  # the fields stay on the compute device until here
-        np.savez_compressed(
-            save_fields, pressure=host.pressure, gap=host.gap, deflection=host.deflection
-        )
+        save_fields_file(save_fields, res)
     summary = res.summary()
     summary["periodic"] = sub.periodic  # False: a free boundary (--non-periodic)
     if surface is not None:
@@ -440,6 +452,7 @@ def _load_surface(surface_file, channel, detrend, fill_missing, pixel_size):
     """
     import numpy as np
 
+    from .._plausibility import check_heights
     from ..surfaces import load_heights
     from ..topography import Topography, file_kind, load_topography
     from ..topography import detrend as remove_trend
@@ -455,6 +468,7 @@ def _load_surface(surface_file, channel, detrend, fill_missing, pixel_size):
                 raise ParameterError(f"{err} (and a line scan: expected a 2D height map)") from None
         if detrend != "none":
             h = np.array(remove_trend(Topography(h, pixel_size), detrend).heights)
+        check_heights(h, f"SURFACE {str(surface_file)!r}")  # a flat surface: no contact path
         return h, pixel_size, None
     topo = _filled(load_topography(surface_file, channel=channel, fill_missing=fill_missing))
     if topo.dim != 2:
@@ -688,6 +702,7 @@ def path(
         raise ParameterError(f"--until-area must be in (0, 1] (A_rep/A0), got {until_area:g}")
     start, stop, step = offsets if offsets is not None else loads
     values = _path_values(option, start, stop, step)
+    check_writable(output, "-o/--output")  # before any work, not at the first checkpoint
     if offset_unit == "bearing_area" and not (0 <= start <= 1 and 0 <= stop <= 1):
         raise ParameterError(
             f"--offsets START and STOP must be in [0, 1] with --offset-unit bearing_area "
@@ -863,6 +878,12 @@ def demo(size, seed, study_size, seeds, output, as_json):
         raise ParameterError(f"--seeds must be >= 1, got {seeds}")
     if study_size and study_size < 8:
         raise ParameterError(f"--study-size must be 0 (no study) or >= 8, got {study_size}")
+    if study_size:
+        from .._io import check_directory_writable
+        from ..workflows.demo import check_demo_study
+
+        check_demo_study(study_size, seeds)  # before the path is computed
+        check_directory_writable(output, "-o/--output")
 
     def progress(i, n, res):
         if not as_json:

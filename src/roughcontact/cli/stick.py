@@ -187,7 +187,10 @@ def stick(scan, channel, modulus, work, poisson, counter_modulus, counter_poisso
     from ..topography.verdict import stick as run
 
     if out_dir is not None:
+        from .._io import check_directory_writable
+
         DPI.check("--dpi", dpi)
+        check_directory_writable(out_dir, "-o/--output")  # before the analysis
     result = run(
         scan,
         modulus=modulus,

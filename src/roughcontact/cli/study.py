@@ -92,10 +92,11 @@ def run(
     the summary, not counted as failures), 1 if any task failed, 2 on bad input.
     """
     from ..studies import load_study, run_study
-    from ..studies.cluster import tls_security
+    from ..studies.cluster import check_options, tls_security
 
     spec = load_study(study_file)  # validated before anything starts
     security = tls_security(tls_ca_file, tls_cert, tls_key)
+    check_options(scheduler, workers, security, dashboard)  # --workers too: before any output
     if not no_progress:
         click.echo(f"study {spec.name!r}: {len(spec.tasks)} tasks -> {out_dir}", err=True)
     summary = run_study(
@@ -126,9 +127,10 @@ def run(
 @click.option("--no-timings", is_flag=True, help="Leave out wall-clock times (reproducible files).")
 def collect(out_dir, output, no_timings):
     """Combine the task files of study directory DIR into one NetCDF file."""
-    from .._io import write_netcdf_atomic
+    from .._io import check_writable, write_netcdf_atomic
     from ..studies import collect_study
 
+    check_writable(output, "-o/--output")  # before reading every task file
     ds = collect_study(out_dir, include_timings=not no_timings)
     write_netcdf_atomic(ds, output)  # a full disk: one line, exit 1, no file half-written
     click.echo(
@@ -165,6 +167,7 @@ def report(source, out_dir, confidence, dpi):
     versions.json, figures/fig2-4 (PNG) and README.md, which takes the claims of
     Pastewka & Robbins (2014) one by one and puts the study's numbers beside them.
     """
+    from .._io import check_directory_writable
     from .._validate import DPI
     from ..studies.report import write_report
 
@@ -173,6 +176,7 @@ def report(source, out_dir, confidence, dpi):
             f"must be in (0, 1), got {confidence!r}", param_hint="--confidence"
         )
     DPI.check("dpi", dpi)
+    check_directory_writable(out_dir, "-o/--output")  # before reading the study
     result = write_report(source, out_dir, confidence=confidence, dpi=dpi)
     c = result["claims"]
     crit = c["eq10_criterion"]["measured_kappa_rep"]

@@ -165,19 +165,22 @@ def study_maps(study_dir):
     Of the task files (:func:`roughcontact.studies.store.task_files`) that hold contact
     fields, those of the same surface, substrate and seed (:data:`~._data.SURFACE_KEYS`)
     are grouped; the largest group (the first on a tie) is returned, sorted by ℓa. An
-    empty list when no task file holds fields.
+    empty list when no task file holds fields. A task file whose task key is not the
+    manifest's (copied in from another study) is left out.
     """
     import xarray as xr
 
     from ..pathdata import read_path
-    from ..studies.store import task_files, task_parameters
+    from ..studies.store import task_files, task_keys, task_parameters
 
-    groups = {}
+    groups, keys = {}, task_keys(study_dir)
     for path in task_files(study_dir):
         try:
             with xr.open_dataset(path, engine="h5netcdf") as ds:
                 if "pressure" not in ds.variables and "gap" not in ds.variables:
                     continue
+                if keys is not None and ds.attrs.get("task_key") != keys.get(path.name):
+                    continue  # another study's file (or other parameters): not this study
                 params = task_parameters(ds.attrs)
         except (OSError, ValueError):
             continue

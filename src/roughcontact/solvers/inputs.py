@@ -72,7 +72,10 @@ def check_hard_wall_offset(heights, substrate, offset) -> None:
     if offset is None or mean == -math.inf:
         return
     xp = array_namespace(heights)
-    if offset < mean - 1e-12 * (float(xp.max(xp.abs(heights))) + abs(offset)):
+    # the mean's rounding in the heights' precision (float32: ~1e-7 of max|h|), so that
+    # float32 accepts the offsets float64 accepts (d = 0 on a mean-zero surface)
+    slack = max(1e-12, 64 * float(xp.finfo(heights.dtype).eps))
+    if offset < mean - slack * (float(xp.max(xp.abs(heights))) + abs(offset)):
         raise ParameterError(
             f"offset must be >= mean(heights) = {mean:g} for a hard wall on a substrate with "
             f"a rigid mean (got {offset:g}: the surfaces would overlap everywhere)"

@@ -94,7 +94,8 @@ def relative_offsets(heights, values, unit="length", interaction=None, pixel_siz
     Raises
     ------
     ParameterError
-        For an unknown unit, non-finite values, or bearing-area fractions outside [0, 1].
+        For an unknown unit, non-finite values, bearing-area fractions outside [0, 1], or
+        flat heights with ``"rms_height"`` or ``"bearing_area"`` (no scale to step by).
     """
     from ..surfaces.statistics import rms_height
 
@@ -110,6 +111,13 @@ def relative_offsets(heights, values, unit="length", interaction=None, pixel_siz
         raise ParameterError(f"values must be finite numbers, got {values!r}")
     h = _host_heights(heights)
     d0 = _equilibrium_distance(interaction)
+    if unit != "length" and h.size and not float(np.ptp(h)) > 1e-9 * float(np.max(np.abs(h))):
+        # every value would give the same d: a path of identical steps
+        raise ParameterError(
+            f"unit {unit!r} needs a rough surface: the heights are flat (all "
+            f"{float(np.mean(h)):.6g} up to rounding), so every value gives the same offset; "
+            "use unit 'length' (or absolute offsets)"
+        )
     if unit == "bearing_area":
         if np.any((v < 0) | (v > 1)):
             raise ParameterError(

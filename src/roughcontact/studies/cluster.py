@@ -14,14 +14,24 @@ seconds) before any work starts, so a wrong or unreachable address is one clear 
 A ``tls://`` scheduler is reached with the given ``security`` (a
 ``distributed.security.Security``, e.g. from :func:`tls_security`) or, without one, with
 the TLS settings of Dask's configuration (``distributed.comm.tls.*``).
+
+The local workers keep their scratch files (spilled data, worker directories) in a
+directory of their own, made fresh for each run by :func:`tempfile.mkdtemp` (mode 0700:
+no other user can list, rename or replace what is in it, as they could in a shared
+``$TMPDIR/dask-scratch-space`` created by someone else with mode 0777) and removed when
+the cluster closes (:func:`close`). Their number is at most :data:`MAX_WORKERS_PER_CORE`
+per CPU core.
 """
 
 from __future__ import annotations
 
 import os
+import shutil
 import socket
 import sys
+import tempfile
 import traceback
+import weakref
 from pathlib import Path
 
 from .._validate import ParameterError
@@ -31,6 +41,7 @@ __all__ = [
     "CONNECT_TIMEOUT",
     "DASHBOARD_ADDRESS",
     "check_options",
+    "close",
     "connect",
     "outcomes",
     "tls_security",
@@ -39,6 +50,8 @@ __all__ = [
 CONNECT_TIMEOUT = 5.0  # seconds to reach a remote scheduler before giving up
 DASHBOARD_ADDRESS = "127.0.0.1:8787"  # the local dashboard, when asked for (loopback only)
 _QUIET = ("_QuietScheduler", "_QuietWorker")
+#: local worker processes per CPU core at most: more only thrash (and exhaust memory)
+MAX_WORKERS_PER_CORE = 4
 
 
 def _default_workers() -> int:
@@ -94,6 +107,9 @@ def _local_cluster(n: int, dashboard: bool):
             f"credentials ({err}); install it (pip install cryptography)"
         ) from None
     this = sys.modules[__name__]  # the quiet classes: module attributes, made on first use
+    # private scratch space: fresh, mode 0700, removed by close() (or at exit)
+    scratch = tempfile.mkdtemp(prefix="roughcontact-dask-")
+    os.chmod(scratch, 0o700)
     scheduler = {
         "cls": Scheduler if dashboard else this._QuietScheduler,
         "options": {
@@ -116,18 +132,47 @@ def _local_cluster(n: int, dashboard: bool):
             "dashboard": False,
             "dashboard_address": None,
             "silence_logs": logging.ERROR,
+            "local_directory": scratch,
             "memory_limit": parse_memory_limit(
                 "auto", 1, n, logger=logging.getLogger("distributed.worker_memory")
             ),
         },
     }
-    return SpecCluster(
-        scheduler=scheduler,
-        workers={i: worker for i in range(n)},
-        worker=worker,
-        security=security,
-        silence_logs=logging.ERROR,
+    try:
+        cluster = SpecCluster(
+            scheduler=scheduler,
+            workers={i: worker for i in range(n)},
+            worker=worker,
+            security=security,
+            silence_logs=logging.ERROR,
+        )
+    except BaseException:
+        shutil.rmtree(scratch, ignore_errors=True)
+        raise
+    cluster._roughcontact_scratch = weakref.finalize(
+        cluster, shutil.rmtree, scratch, ignore_errors=True
     )
+    return cluster
+
+
+def close(client, cluster) -> None:
+    """Close ``client`` and the local ``cluster`` (if any), then remove its scratch space."""
+    try:
+        if client is not None:
+            client.close()
+    finally:
+        if cluster is not None:
+            try:
+                cluster.close()
+            finally:
+                remove = getattr(cluster, "_roughcontact_scratch", None)
+                if remove is not None:
+                    remove()
+
+
+def max_workers() -> int:
+    """The most local worker processes accepted: :data:`MAX_WORKERS_PER_CORE` per core."""
+    return MAX_WORKERS_PER_CORE * _default_workers()
 
 
 def tls_security(ca_file=None, cert=None, key=None):
@@ -181,6 +226,15 @@ def tls_security(ca_file=None, cert=None, key=None):
 
 def check_options(scheduler, workers, security, dashboard) -> None:
     """Reject options that do not apply to ``scheduler`` (before anything is written)."""
+    if workers is not None and (
+        isinstance(workers, bool) or not isinstance(workers, int) or workers < 1
+    ):
+        raise ParameterError(f"workers must be an integer >= 1, got {workers!r}")
+    if workers is not None and scheduler is None and workers > max_workers():
+        raise ParameterError(
+            f"workers must be an integer in [1, {max_workers()}] ({MAX_WORKERS_PER_CORE} per "
+            f"CPU core of the {_default_workers()} here), got {workers!r}"
+        )
     if security is not None:
         from distributed.security import Security
 
@@ -223,15 +277,19 @@ def connect(scheduler, workers, security=None, dashboard=False):
         # unmapped: page faults and TLB shootdowns cost the demo 73 s of CPU time in the
         # kernel (83 s wall; 37 s without). Our workers keep glibc's defaults (an explicit
         # MALLOC_TRIM_THRESHOLD_ in the environment still wins, as in Dask).
-        with dask.config.set({"distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None}):
-            cluster = _local_cluster(n, dashboard)
+        client = cluster = None
         try:
-            # not the default client: dask work of this process (xarray's NetCDF writes of the
-            # task files, a notebook's computations) stays local, uses no distributed locks
-            return Client(cluster, set_as_default=False), cluster
-        except BaseException:
-            cluster.close()
+            with dask.config.set(
+                {"distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None}
+            ):
+                cluster = _local_cluster(n, dashboard)
+            # not the default client: dask work of this process (xarray's NetCDF writes of
+            # the task files, a notebook's computations) stays local, no distributed locks
+            client = Client(cluster, set_as_default=False)
+        except BaseException:  # Ctrl-C while it starts too: closed, its scratch removed
+            close(client, cluster)
             raise
+        return client, cluster
     if isinstance(scheduler, Client):
         return scheduler, None
     if not isinstance(scheduler, str) or not scheduler.strip():

@@ -12,6 +12,7 @@ from __future__ import annotations
 import dataclasses
 import json
 import math
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -75,23 +76,39 @@ def _number(value) -> float:
     return float(value)
 
 
-def _read(out, task_id):
-    """(status, reason, attrs, step arrays) of one task."""
+#: the reason of a task whose file belongs to another study or other parameters
+FOREIGN = (
+    "its task file was written for another study or other parameters (its task_key is "
+    "not the manifest's): ignored; run the study again with --resume to compute it"
+)
+
+
+def _read(out, task):
+    """(status, reason, attrs, step arrays) of one task (a manifest entry)."""
     import xarray as xr
 
-    path = store.task_path(out, task_id)
-    failure = store.failure_path(out, task_id)
+    path = store.task_path(out, task["id"])
+    failure = store.failure_path(out, task["id"])
+    key = task.get("key")
     try:
-        with xr.open_dataset(path, engine="h5netcdf") as ds:
-            if store.MARKER in ds.attrs:
-                steps = {k: ds[k].values for k in STEP_VARIABLES if k in ds.variables}
-                return "done", "", dict(ds.attrs), steps
+        if store.is_regular(path):
+            with xr.open_dataset(path, engine="h5netcdf") as ds:
+                if store.MARKER in ds.attrs:
+                    if key is not None and ds.attrs.get("task_key") != key:
+                        return "missing", FOREIGN, {}, {}
+                    steps = {k: ds[k].values for k in STEP_VARIABLES if k in ds.variables}
+                    return "done", "", dict(ds.attrs), steps
     except (OSError, ValueError, KeyError):
         pass
-    if failure.exists():
+    if failure.exists() or failure.is_symlink():
         try:
-            reason = json.loads(failure.read_text()).get("reason", "failed")
-        except (OSError, ValueError):
+            if not store.is_regular(failure):
+                raise OSError("not a regular file")
+            record = json.loads(failure.read_text())
+            if key is not None and record.get("task_key", key) != key:
+                return "missing", FOREIGN, {}, {}
+            reason = record.get("reason", "failed")
+        except (OSError, ValueError, AttributeError):
             reason = "failed (unreadable failure record)"
         return "failed", reason, {}, {}
     return "missing", "not run or not finished (run the study again with --resume)", {}, {}
@@ -175,7 +192,10 @@ def collect_study(out_dir, *, include_timings: bool = True):
         sticky (1/0), reliable (1/0), predicted_*, ...; the text ones, verdict,
         predicted_verdict and necessary_condition, as strings), analysis_warnings,
         analysis_error, measured surface statistics, steps_not_converged, n_steps,
-        status ("done", "failed", "missing"), failed (True unless done), failure_reason,
+        status ("done", "failed", "missing"; a task file whose task_key is not the
+        manifest's, e.g. copied from another study, is ignored with a RuntimeWarning and
+        the task counted as missing: attribute tasks_foreign), failed (True unless done),
+        failure_reason,
         task_file. On ``task`` × ``step``: the per-step variables of the path layout
         (:data:`STEP_VARIABLES`: offset, load, repulsive/attractive load and area,
         perimeter, perimeter_edges, corrected_repulsive_area, mean_gap, iterations,
@@ -191,7 +211,15 @@ def collect_study(out_dir, *, include_timings: bool = True):
     tasks = sorted(manifest["tasks"], key=lambda t: t["id"])
     if not tasks:
         raise ParameterError(f"study directory {str(out)!r} lists no tasks")
-    records = [_read(out, t["id"]) for t in tasks]
+    records = [_read(out, t) for t in tasks]
+    foreign = sum(r[1] == FOREIGN for r in records)
+    if foreign:
+        warnings.warn(
+            f"{foreign} task file(s) in {str(out)!r} belong to another study or other "
+            "parameters (task_key differs from the manifest's): ignored, counted as missing",
+            RuntimeWarning,
+            stacklevel=2,
+        )
     n_steps = [len(r[3].get("offset", ())) for r in records]
     width = max(n_steps)
     coords = {"task": [t["id"] for t in tasks], "step": np.arange(width)}
@@ -263,6 +291,7 @@ def collect_study(out_dir, *, include_timings: bool = True):
             "tasks_done": int(sum(r[0] == "done" for r in records)),
             "tasks_failed": int(sum(r[0] == "failed" for r in records)),
             "tasks_missing": int(sum(r[0] == "missing" for r in records)),
+            "tasks_foreign": int(foreign),
             "roughcontact_version": __version__,
             "units": "lattice units unless given: loads and areas per nominal area A0, "
             "lengths in units of the pixel size, pressures in units of E*",

@@ -26,7 +26,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .._io import write_bytes_atomic, write_netcdf_atomic
+from .._io import output_directory, write_bytes_atomic, write_netcdf_atomic
 from .._validate import json_safe
 from . import claims as _claims
 from . import criteria_claims as _cc
@@ -467,8 +467,9 @@ def write_report(source, out_dir, *, confidence: float = 0.95, dpi: int = 120) -
     claims = _claims.all_claims(ds, confidence=confidence)
     meta = _meta(ds, source, out, claims)
     files = []
-    data = out / "data"
-    data.mkdir(parents=True, exist_ok=True)
+    out.mkdir(parents=True, exist_ok=True)
+    # a link planted at data/ or figures/ is replaced: nothing lands outside the report
+    data = output_directory(out / "data")
     files.append(write_netcdf_atomic(ds, data / "collected.nc"))
     for name, frame in (
         ("tasks", _tasks_frame(ds)),
@@ -494,7 +495,7 @@ def write_report(source, out_dir, *, confidence: float = 0.95, dpi: int = 120) -
     files.append(write_bytes_atomic(out / "versions.json", (text + "\n").encode()))
     from ..plot.figures import save_figures
 
-    written = save_figures(ds, out / "figures", ("png",), dpi=dpi)
+    written = save_figures(ds, output_directory(out / "figures"), ("png",), dpi=dpi)
     files += [p for paths in written.values() for p in paths]
     figures = list(written)
     readme = render_report(claims, meta, figures)

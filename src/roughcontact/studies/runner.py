@@ -294,8 +294,7 @@ def _run_locked(spec, out, resume, where, progress, t0):
         raise _stopped(err, spec, out) from None
     finally:
         if local is not None:
-            client.close()
-            local.close()
+            cluster.close(client, local)  # and its private scratch directory
         elif client is not None and client is not scheduler:
             client.close()
     return StudySummary(

@@ -64,14 +64,27 @@ def _shared(rng: Range):
 
 
 _NUM = ("finite", math.isfinite)
+#: the largest grid of a study (sites per axis)
+MAX_SIZE = 16384
+# what a surface of float64 heights can carry and a solver resolve (lattice units): far
+# beyond these the heights under- or overflow and every task would fail after the start
+_RMS_SLOPE = ("in [1e-8, 1e4]", lambda v: 1e-8 <= v <= 1e4)
+_RMS_HEIGHT = ("in [1e-8, 1e8] (units of pixel_size)", lambda v: 1e-8 <= v <= 1e8)
+# E* in a study's units: the solvers' states overflow beyond about 1e±30 (every task would
+# fail after the start), so a study takes the API's range narrowed to [1e-20, 1e20]
+_MODULUS = (
+    "in [1e-20, 1e20]",
+    lambda v: CONTACT_MODULUS.contains(v) and 1e-20 <= v <= 1e20,
+)
 SCHEMA = {
     "study": {"name": _k(str, sweep=False), "description": _k(str, sweep=False, default="")},
     "surface": {
-        "size": _k(int, "an integer >= 8", lambda v: v >= 8),
+        # 16384² sites: a few GiB per field map; larger grids do not fit a worker
+        "size": _k(int, f"an integer >= 8 and <= {MAX_SIZE}", lambda v: 8 <= v <= MAX_SIZE),
         "pixel_size": _k(float, *_shared(PIXEL_SIZE), default=1.0),
         "hurst": _k(float, *_shared(HURST)),
-        "rms_slope": _k(float, *_POS),
-        "rms_height": _k(float, *_POS),
+        "rms_slope": _k(float, *_RMS_SLOPE),
+        "rms_height": _k(float, *_RMS_HEIGHT),
         "short_cutoff": _k(float, ">= 2 * pixel_size", lambda v: 0 < v < math.inf),
         "long_cutoff": _k(float, "in (short_cutoff, size * pixel_size]", lambda v: v > 0),
         "rolloff": _k(bool, default=True),
@@ -84,7 +97,7 @@ SCHEMA = {
         ),
     },
     "substrate": {
-        "contact_modulus": _k(float, *_shared(CONTACT_MODULUS), default=1.0),
+        "contact_modulus": _k(float, *_MODULUS, default=1.0),
         "thickness": _k(float, *_POS),
         "poisson": _k(float, *_shared(POISSON), default=0.5),
         "base": _k(

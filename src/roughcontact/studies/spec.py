@@ -13,14 +13,28 @@ import hashlib
 import itertools
 import json
 import math
+import re
 import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from .._validate import MAX_PATH_STEPS, ParameterError, layer_thickness, step_indices
+from .._validate import (
+    MAX_PATH_STEPS,
+    MAX_TOL_FLOAT32,
+    ParameterError,
+    layer_thickness,
+    step_indices,
+)
 from ..interactions.registry import law_parameters
 from ..solvers.inputs import DEFAULT_TOL
 from .schema import KINDS, LAW_KEYS, SCHEMA, SWEEP_KEYS, UNITS, find, make_interaction
+
+#: the most tasks a study may have (seeds x parameter sets): checked before they are built
+MAX_TASKS = 100_000
+#: the largest study file read (a study lists parameters, not data)
+MAX_STUDY_BYTES = 16 * 2**20
+#: the deepest nesting of arrays and inline tables a study file may hold
+MAX_NESTING = 32
 
 __all__ = [
     "StudySpec",
@@ -71,25 +85,80 @@ def load_study(path) -> StudySpec:
     ParameterError
         Naming the key, the value and the accepted range of the first problem found.
     """
+    from .._files import read_input_bytes
+
     path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
+    try:  # a FIFO or device is refused before it is opened (it could block forever)
+        raw = read_input_bytes(path, "cannot read study file", "a TOML file", MAX_STUDY_BYTES + 1)
     except OSError as err:
         raise ParameterError(f"cannot read study file {str(path)!r}: {err.strerror}") from None
+    if len(raw) > MAX_STUDY_BYTES:
+        raise ParameterError(
+            f"study file {path.name}: larger than {MAX_STUDY_BYTES // 2**20} MiB; expected a "
+            "TOML study file (lists of parameters, not data)"
+        )
+    try:
+        text = raw.decode("utf-8")
     except UnicodeDecodeError as err:
         raise ParameterError(
             f"study file {path.name}: not a text file (byte {err.start} is not UTF-8); "
             "expected a TOML study file"
         ) from None
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as err:
-        raise ParameterError(f"study file {path.name}: not valid TOML: {err}") from None
+    # a UTF-8 byte order mark (some Windows editors write one) is not TOML: dropped
+    text = text.removeprefix("\ufeff")
+    data = _parse_toml(path, text)
     return study_from_dict(data, source=str(path), text=text, default_name=path.stem)
 
 
+def _parse_toml(path, text) -> dict:
+    """The parsed TOML, or one ParameterError line (also for values nested too deep)."""
+    depth = _nesting(text)
+    if depth > MAX_NESTING:
+        raise ParameterError(
+            f"study file {path.name}: values or keys nested {depth} deep; accepted at most "
+            f"{MAX_NESTING} levels of arrays, inline tables and dotted keys"
+        )
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as err:
+        raise ParameterError(f"study file {path.name}: not valid TOML: {err}") from None
+    except RecursionError:  # pragma: no cover - refused by _nesting first
+        raise ParameterError(f"study file {path.name}: values nested too deep") from None
+
+
+#: TOML strings and comments (their brackets and dots are text, not structure)
+_STRINGS = re.compile(
+    r'"""[\s\S]*?"""' r"|'''[\s\S]*?'''" r'|"(?:\\.|[^"\\\n])*"' r"|'[^'\n]*'|#[^\n]*"
+)
+#: a dot of a dotted key (a.b.c), not one inside a number (1.5, a time's 00.999)
+_KEY_DOT = re.compile(r"(?<![0-9])\.|\.(?![0-9])")
+
+
+def _nesting(text: str) -> int:
+    """An upper bound of the nesting a TOML text asks for: of arrays and inline tables
+    (the running count of brackets and braces) and of dotted keys (the dots of one line),
+    outside strings and comments. tomllib recurses on each level of the former (a deep
+    one ends in a RecursionError and thousands of lines) and takes quadratic time in the
+    latter (a key of 50,000 parts: minutes)."""
+    bare = _STRINGS.sub('""', text)
+    depth = deepest = 0
+    for match in re.finditer(r"[\[\]{}]", bare):
+        depth = depth + 1 if match.group() in "[{" else max(depth - 1, 0)
+        deepest = max(deepest, depth)
+    dots = max((len(_KEY_DOT.findall(line)) for line in bare.splitlines()), default=0)
+    return max(deepest, dots)
+
+
 def _fail(message):
+    message = str(message)
+    if len(message) > 1000:  # a value of 10^5 entries: its head and the accepted range
+        message = f"{message[:500]} ... {message[-400:]}"
     raise ParameterError(f"study: {message}")
+
+
+def _inner(err) -> str:
+    """A nested error's text without its own ``study:`` prefix (said once, by _fail)."""
+    return str(err).removeprefix("study: ")
 
 
 def _value(where, key, spec, value):
@@ -100,6 +169,11 @@ def _value(where, key, spec, value):
     if bad_type or not isinstance(value, spec.kind):
         expected = KINDS[spec.kind] + (f" ({spec.accepted})" if spec.accepted else "")
         _fail(f"{where} {key} = {value!r} has the wrong type: expected {expected}")
+    if isinstance(value, str) and any(ord(ch) < 32 and ch not in "\t\n\r" for ch in value):
+        _fail(
+            f"{where} {key} = {value!r} holds a control character (NUL, ...): accepted "
+            "printable text"
+        )
     if spec.test is not None and not spec.test(value):
         _fail(f"{where} {key} = {value!r} is out of range: accepted {spec.accepted}")
     return value
@@ -155,6 +229,13 @@ def study_from_dict(data, *, source="<dict>", text=None, default_name="study") -
                 f"[[cases]] #{i + 1} sets {clash[0]!r}, which is already a grid axis "
                 f"({clash[0]} = {axes[clash[0]]!r}); give it in one place only"
             )
+    count = len(cases) * len(seeds) * math.prod(len(v) for v in axes.values())
+    if count > MAX_TASKS:
+        sizes = " x ".join(f"{len(v)} {k}" for k, v in {**axes, "seeds": seeds}.items())
+        _fail(
+            f"{count} tasks ({sizes}, {len(cases)} [[cases]]) are too many: accepted at "
+            f"most {MAX_TASKS}; split the study"
+        )
     combos = []
     for case in cases:
         for values in itertools.product(*axes.values()):
@@ -231,10 +312,11 @@ def _settings(sections) -> dict:
             )
     out["output"]["fields"] = list(out["output"]["fields"])
     out["output"]["fields_at"] = list(out["output"]["fields_at"])
+    steps = path_steps(path)  # its own message ([path]): outside the try below
     try:  # the range approach_retract checks, known here: before any work
-        step_indices("fields_at", out["output"]["fields_at"], path_steps(path))
+        step_indices("fields_at", out["output"]["fields_at"], steps)
     except ParameterError as err:
-        _fail(f"[output] {err}")
+        _fail(f"[output] {_inner(err)}")
     # settings enter every task's key: a study that does not use this later key keeps
     # the keys it had, so its directories written before it existed still --resume
     areas = list(out["output"].pop("fields_at_area"))
@@ -248,6 +330,11 @@ def _settings(sections) -> dict:
         _fail(
             f"[solver] tol = {solver['tol']!r} is out of range for dtype = 'float32': "
             f"accepted >= {DEFAULT_TOL['float32']:g} (its rounding floor)"
+        )
+    if solver["dtype"] == "float32" and solver["tol"] > MAX_TOL_FLOAT32:
+        _fail(
+            f"[solver] tol = {solver['tol']!r} is out of range for dtype = 'float32': "
+            f"accepted <= {MAX_TOL_FLOAT32:g} (a looser single-precision solve means nothing)"
         )
     if solver["dtype"] == "float64":
         del solver["dtype"]  # the default: keys as before the key existed (see above)
@@ -269,7 +356,14 @@ def approach_steps(path: dict) -> int:
                 f"{MAX_PATH_STEPS}; use a larger step"
             )
         n = int(math.floor(span + 1e-9)) + 1
-    return n + (len(path["lead_in"]) if path["control"] == "offset" else 0)
+    lead = len(path["lead_in"]) if path["control"] == "offset" else 0
+    if n + lead > MAX_PATH_STEPS:
+        given = f"{n} values" + (f" and {lead} lead_in steps" if lead else "")
+        _fail(
+            f"[path] {given} give {n + lead} steps: accepted at most {MAX_PATH_STEPS} "
+            "(approach, lead-in included)"
+        )
+    return n + lead
 
 
 def path_steps(path: dict) -> int:
@@ -303,11 +397,16 @@ def _resolve(combo, varying) -> dict:
     if (p["rms_slope"] is None) == (p["rms_height"] is None):
         _fail(f"[surface] give exactly one of rms_slope, rms_height ({where})")
     a0, size = p["pixel_size"], p["size"] * p["pixel_size"]
+    if p["rms_height"] is not None and not 1e-8 <= p["rms_height"] / a0 <= 1e8:
+        _fail(
+            f"[surface] rms_height = {p['rms_height']!r} is out of range: accepted in "
+            f"[1e-8, 1e8] * pixel_size = [{1e-8 * a0:g}, {1e8 * a0:g}] ({where})"
+        )
     if p["thickness"] is not None:  # relative to a0: the range Substrate checks
         try:
             layer_thickness("thickness", p["thickness"], a0)
         except ParameterError as err:
-            _fail(f"[substrate] {err} ({where})")
+            _fail(f"[substrate] {_inner(err)} ({where})")
         if p["periodic"] is False:
             _fail(f"[substrate] periodic = false needs a half-space (no thickness) ({where})")
     if p["short_cutoff"] < 2 * a0:
@@ -329,7 +428,7 @@ def _resolve(combo, varying) -> dict:
     try:
         law = make_interaction(p)
     except ParameterError as err:
-        _fail(f"[interaction] {err} ({where})")
+        _fail(f"[interaction] {_inner(err)} ({where})")
     values = law_parameters(law)
     for key in ("work_of_adhesion", "range", "stiffness"):
         p[key] = values.get(key, p[key])

@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import json
 import os
+import stat
 import time
 from pathlib import Path
 
@@ -41,6 +42,7 @@ __all__ = [
     "failure_path",
     "read_manifest",
     "task_files",
+    "task_keys",
     "task_parameters",
     "task_path",
     "write_failure",
@@ -63,8 +65,33 @@ def task_path(out_dir, task_id: str) -> Path:
 
 
 def task_files(out_dir) -> list[Path]:
-    """The task files (:func:`task_path`) in a study directory, sorted by task id."""
-    return sorted(Path(out_dir).glob(_TASK_FILES))
+    """The task files (:func:`task_path`) in a study directory, sorted by task id.
+
+    Only regular files: a symbolic link, FIFO or device planted under a task file's name
+    is left out (never followed; opening a FIFO would block).
+    """
+    return sorted(p for p in Path(out_dir).glob(_TASK_FILES) if is_regular(p))
+
+
+def task_keys(out_dir) -> dict | None:
+    """``{task file name: task key}`` of the manifest, or None without a readable one.
+
+    A task file is the study's own only if its ``task_key`` attribute is the key here:
+    a file copied in from another study (or run with other parameters) is not.
+    """
+    try:
+        manifest = read_manifest(out_dir)
+        return {task_path(".", t["id"]).name: t.get("key") for t in manifest["tasks"]}
+    except (ParameterError, KeyError, TypeError):
+        return None
+
+
+def is_regular(path) -> bool:
+    """Is ``path`` itself a regular file (not a link to one, not a FIFO or device)?"""
+    try:
+        return stat.S_ISREG(os.lstat(path).st_mode)
+    except OSError:
+        return False
 
 
 def task_parameters(attrs) -> dict:
@@ -153,8 +180,10 @@ def check_task(out_dir, task):
     import xarray as xr
 
     path = task_path(out_dir, task.id)
-    if not path.exists():
+    if not path.exists() and not path.is_symlink():
         return False, "missing"
+    if not is_regular(path):
+        return False, "not a regular file (a link, FIFO or device): recomputed"
     try:
         with xr.open_dataset(path, engine="h5netcdf") as ds:
             attrs = dict(ds.attrs)

@@ -25,13 +25,11 @@ _EXPECTED = "a 2D array (at least 2x2) of finite real heights with a finite rms"
 
 
 def _existing_file(path) -> Path:
-    p = Path(os.fspath(path))
-    if not p.is_file():
-        raise ParameterError(
-            f"path {str(p)!r}: no such file; expected a .npy, text or instrument file "
-            f"holding {_EXPECTED}"
-        )
-    return p
+    """``path`` if it is a regular file: a FIFO or device is refused before it is opened
+    (reading it could block forever), a missing file in one line."""
+    from .._files import regular_input
+
+    return regular_input(path, "path", f"a .npy, text or instrument file holding {_EXPECTED}")
 
 
 def _read_array(p: Path, expected: str = _EXPECTED) -> np.ndarray:
@@ -39,14 +37,22 @@ def _read_array(p: Path, expected: str = _EXPECTED) -> np.ndarray:
 
     Boolean, complex, object and text arrays are rejected, never converted.
     """
+    from .._files import npy_header, open_input
+
+    if p.suffix.lower() == ".npy":  # the claimed size against the file's, before numpy
+        npy_header(p, expected)
     try:
         if p.suffix.lower() == ".npy":
-            data = np.load(p, allow_pickle=False)
+            with open_input(p, "path", expected) as f:
+                data = np.load(f, allow_pickle=False)
         else:
-            text = p.read_text().replace(",", " ")
+            with open_input(p, "path", expected) as f:
+                text = f.read().decode("utf-8").replace(",", " ")
             with warnings.catch_warnings():  # an empty file: the shape check says it in one line
                 warnings.simplefilter("ignore", UserWarning)
                 data = np.loadtxt(_io.StringIO(text), dtype=float)
+    except ParameterError:
+        raise
     except (OSError, ValueError, UnicodeDecodeError, EOFError) as exc:
         raise ParameterError(
             f"path {str(p)!r}: could not read heights ({exc}); expected {expected}"
@@ -132,16 +138,35 @@ def save_heights(path, heights) -> Path:
     -------
     pathlib.Path
         The path written.
+
+    Raises
+    ------
+    roughcontact._io.WriteError
+        The disk is full (quota, I/O error): an existing file at ``path`` is unchanged.
+    ParameterError
+        Any other failure to write (missing or read-only directory, ...), in one line.
+
+    Notes
+    -----
+    The file is written atomically (a temporary file in the same directory, fsync'ed and
+    renamed over ``path``); a symbolic link at ``path`` is replaced, never followed.
     """
+    from .._io import WriteError, write_bytes_atomic
+
     p = Path(os.fspath(path))
     h = np.asarray(to_numpy(heights2d("heights", heights)), dtype=np.float64)
+    buffer = _io.BytesIO()  # built in memory: the file on disk is the old one or the new
+    if p.suffix.lower() == ".npy":
+        np.save(buffer, h, allow_pickle=False)
+    else:
+        delim = "," if p.suffix.lower() == ".csv" else " "
+        np.savetxt(buffer, h, fmt="%.17g", delimiter=delim)
     try:
-        if p.suffix.lower() == ".npy":
-            with open(p, "wb") as f:
-                np.save(f, h, allow_pickle=False)
-        else:
-            delim = "," if p.suffix.lower() == ".csv" else " "
-            np.savetxt(p, h, fmt="%.17g", delimiter=delim)
+        # atomic (temporary file, fsync, rename): a full disk leaves an existing file as
+        # it was; a symbolic link at ``path`` is replaced, never written through
+        write_bytes_atomic(p, buffer.getbuffer())
+    except WriteError:
+        raise
     except OSError as exc:
         raise ParameterError(f"path {str(p)!r}: could not write ({exc})") from None
     return p

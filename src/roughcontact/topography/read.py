@@ -46,10 +46,12 @@ def file_kind(path) -> str:
     p = Path(os.fspath(path))
     if p.suffix.lower() == ".npy":
         return "npy"
-    try:
-        with open(p, "rb") as f:
+    from .._files import open_input
+
+    try:  # a FIFO or device is never opened for reading (it could block forever)
+        with open_input(p) as f:
             sample = f.read(_SNIFF_BYTES + 1)
-    except OSError:
+    except (OSError, ParameterError):
         return "text"  # the reader reports the error, naming the file
     if b"\0" in sample:
         return "instrument"
@@ -135,7 +137,11 @@ def load_topography(
     Raises
     ------
     ParameterError
-        One line naming the file: missing, corrupt or of an unknown format; an unknown
+        One line naming the file: missing, not a regular file (a FIFO, device or
+        directory: refused before it is opened), corrupt or of an unknown format;
+        implausible data (non-finite, flat, or of an instrument file a peak-to-valley
+        height outside [1 fm, 1 m] or a pixel size outside [1 pm, 1 m], see
+        :mod:`roughcontact._plausibility`); an unknown
         channel (listing the available ones) or a channel that holds no heights;
         more missing points than ``fill_missing`` allows; SurfaceTopography not installed.
     """
@@ -145,7 +151,7 @@ def load_topography(
     kind = file_kind(p)
     if kind == "instrument":
         try:
-            return _read_instrument(
+            topo = _read_instrument(
                 p, channel, periodic, pixel_size, height_unit, fill_missing, resample
             )
         except ParameterError:
@@ -155,7 +161,21 @@ def load_topography(
                 f"path {str(p)!r}: corrupt or truncated instrument file, its channels could "
                 f"not be read ({_why(exc)}); expected {_ACCEPTED}"
             ) from None
-    return _read_plain(p, kind, channel, periodic, pixel_size, height_unit, fill_missing)
+    else:
+        topo = _read_plain(p, kind, channel, periodic, pixel_size, height_unit, fill_missing)
+    _plausible(p, kind, topo)
+    return topo
+
+
+def _plausible(p, kind, topo) -> None:
+    """Absurd data (damaged file, wrong unit, a constant) is refused at the reading edge."""
+    from .._plausibility import check_header, check_heights, check_metres
+
+    where = f"path {str(p)!r}"
+    check_heights(topo.heights, where)
+    if kind == "instrument":  # units from the file (a .npy's are the caller's)
+        check_metres(topo.heights, topo.pixel_size, where)
+        check_header(p, topo.info.get("format", ""), topo.shape)
 
 
 def _read_plain(p, kind, channel, periodic, pixel_size, height_unit, fill_missing):

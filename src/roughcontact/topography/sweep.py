@@ -61,6 +61,8 @@ CONTINUUM_MIN_D_REP = 3.0
 
 #: How many standard errors of H the verdict's band spans (2: about 95 %).
 HURST_SIGMAS = 2.0
+#: the widest Hurst band in standard errors (beyond, the band is all of (0, 1] and more)
+MAX_HURST_SIGMAS = 10.0
 #: Hurst exponents sampled across the band (odd: the fitted one is the middle one).
 HURST_SAMPLES = 9
 #: Smallest scales per decade of the sweep from lambda_c to a0.
@@ -180,7 +182,7 @@ def stickiness_verdict(
         strings with units; give ``contact_modulus`` E* or ``youngs_modulus`` with
         ``poisson``).
     hurst_sigmas : float
-        Half-width of the H band in standard errors (>= 0; 0: the fitted H only).
+        Half-width of the H band in standard errors (in [0, 10]; 0: the fitted H only).
     no_extrapolation : str
         Why the spectrum supports no extrapolation below the measured scale (e.g.
         :func:`~roughcontact.topography.fitrange.self_affine_problem`); ``""`` (default)
@@ -208,8 +210,11 @@ def stickiness_verdict(
         k = math.nan if isinstance(hurst_sigmas, bool) else float(hurst_sigmas)
     except (TypeError, ValueError):
         k = math.nan
-    if not (math.isfinite(k) and k >= 0):
-        raise ParameterError(f"hurst_sigmas must be a number >= 0, got {hurst_sigmas!r}")
+    if not (math.isfinite(k) and 0 <= k <= MAX_HURST_SIGMAS):
+        raise ParameterError(
+            f"hurst_sigmas must be a number in [0, {MAX_HURST_SIGMAS:g}] (standard errors of "
+            f"H; a wider band spans every H), got {hurst_sigmas!r}"
+        )
     a0, lam_c = measured.atomic_spacing, stats.measured_scale
     if no_extrapolation:
         return _measured_only(stats, measured, a0, str(no_extrapolation))

@@ -146,7 +146,7 @@ def stick(
         Wavelengths [m] of the Hurst fit (default: from the measured scale, after the
         instrument's limits, or 4 pixels, to a quarter of the scan).
     hurst_sigmas : float
-        Half-width of the H band in standard errors, default 2 (about 95 %).
+        Half-width of the H band in standard errors, default 2 (about 95 %), at most 10.
     simulate : bool
         Also run the paper's simulation on synthetic surfaces continuing the scan's
         spectrum down to ``atomic_spacing`` (:func:`~.simulate.simulate_stickiness`;
@@ -185,6 +185,9 @@ def stick(
     if tip is not None and given_cutoff is not None:
         raise ParameterError("give tip_radius or reliability_cutoff, not both")
     topo = _read(scan, channel, pixel_size, height_unit, periodic, fill_missing, Topography)
+    from .._plausibility import check_heights
+
+    check_heights(topo.heights, "scan")  # |h| past 1e150 is out of range, not "flat"
     raw = float(np.std(topo.heights))
     topo = _detrend(topo, detrend)
     if not float(np.std(topo.heights)) > 1e-12 * raw:  # what is left is round-off

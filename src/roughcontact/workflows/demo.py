@@ -29,10 +29,13 @@ from pathlib import Path
 
 import numpy as np
 
+from ..errors import ParameterError
+
 __all__ = [
     "ADHESION_LENGTHS",
     "MAP_AREA",
     "SHORT_CUTOFF",
+    "check_demo_study",
     "demo_path",
     "demo_study",
     "run_demo_study",
@@ -182,6 +185,20 @@ def demo_study(size: int, seeds) -> dict:
     }
 
 
+def check_demo_study(size: int, seeds: int) -> None:
+    """Refuse (ParameterError, one line) a demo study of ``seeds`` realisations on
+    ``size``² grids that the study's checks would refuse, before any work."""
+    from ..studies import study_from_dict
+    from ..studies.spec import MAX_TASKS
+
+    most = MAX_TASKS // len(ADHESION_LENGTHS)
+    if seeds > most:
+        raise ParameterError(
+            f"--seeds must be <= {most} (a study of at most {MAX_TASKS} tasks), got {seeds}"
+        )
+    study_from_dict(demo_study(size, [1]))
+
+
 def run_demo_study(
     out_dir,
     *,
@@ -234,6 +251,7 @@ def _map_rows(maps, pressures, labels) -> list[dict]:
 
 def _figures(out: Path, ds):
     """Draw Figs. 1-4 (PNG and PDF) from the collected study and its task files."""
+    from .._io import output_directory
     from ..plot import save_figures, study_maps
     from ..plot._data import STATISTICAL_CONTACTS
     from .figure1 import same_area_maps
@@ -242,7 +260,7 @@ def _figures(out: Path, ds):
     pressures, labels = same_area_maps(maps, MAP_AREA) if maps else ([], [])
     figures = save_figures(
         ds,
-        out / "figures",
+        output_directory(out / "figures"),  # a link planted there is replaced
         formats=("png", "pdf"),
         maps=pressures or None,
         labels=labels or None,
@@ -254,7 +272,7 @@ def _figures(out: Path, ds):
 
 def _outputs(out: Path, size, seeds, summary, hard_wall=None) -> dict:
     """Collect the finished study, draw the figures, write ``report.md``; the JSON dict."""
-    from .._io import write_netcdf_atomic
+    from .._io import write_bytes_atomic, write_netcdf_atomic
     from ..plot._data import STATISTICAL_CONTACTS, eq4_outliers
     from ..studies import collect_study
     from ..studies.aggregate import aggregate_seeds
@@ -277,7 +295,8 @@ def _outputs(out: Path, size, seeds, summary, hard_wall=None) -> dict:
         run=summary,
         figures=figures,
     )
-    (out / "report.md").write_text("\n".join(report) + "\n", encoding="utf-8")
+    # atomic, and a link planted at report.md is replaced rather than written through
+    write_bytes_atomic(out / "report.md", ("\n".join(report) + "\n").encode("utf-8"))
     return {
         "table": rows,
         "summary": summary_text,
