@@ -66,3 +66,19 @@ def test_tasks_run_seed_by_seed(tmp_path, make_study):
     assert [t.id for t in todo if t.params["seed"] == 1] == sorted(
         t.id for t in spec.tasks if t.params["seed"] == 1
     )
+
+
+def test_report_of_a_non_adhesive_study(tmp_path):
+    """A hard-wall study has no adhesion length: the report still runs (no Eq. 10 claims)."""
+    study = tmp_path / "hw.toml"
+    study.write_text(
+        '[study]\nname = "hw"\n[surface]\nsize = 32\nhurst = 0.8\nrms_slope = 0.1\n'
+        'short_cutoff = 4.0\nseeds = [1, 2]\n[interaction]\nlaw = "hardwall"\n'
+        '[path]\nunit = "rms_height"\nstart = 0.5\nstop = -2.0\nnum = 6\n[solver]\ntol = 1e-6\n'
+    )
+    out = tmp_path / "out"
+    run_study(load_study(study), out, scheduler="synchronous", progress=False)
+    r = CliRunner().invoke(main, ["study", "report", str(out), "-o", str(tmp_path / "report")])
+    assert r.exit_code == 0, r.output
+    assert "Traceback" not in r.output
+    assert (tmp_path / "report" / "README.md").read_text().startswith("#")

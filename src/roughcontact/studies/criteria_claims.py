@@ -109,7 +109,13 @@ def necessary_condition(ds, *, confidence=0.95) -> dict:
     a0 = float(np.nanmedian(a0)) if a0 is not None else 1.0
     table = {"met": dict.fromkeys(VERDICTS, 0), "not_met": dict.fromkeys(VERDICTS, 0)}
     for r in rows:
-        met = r["adhesion_length"] / a0 >= bound * r["rms_slope"]
+        try:
+            la = float(r.get("adhesion_length"))
+        except (TypeError, ValueError):  # a non-adhesive set ("" / None): nothing to meet
+            continue
+        if not np.isfinite(la):
+            continue
+        met = la / a0 >= bound * r["rms_slope"]
         table["met" if met else "not_met"][r["verdict"]] += 1
     tasks = _analysed(ds)
     note = (
