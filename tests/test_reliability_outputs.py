@@ -341,7 +341,8 @@ def test_ctrl_c_while_starting_is_one_line_and_130(tmp_path):
         text = err.decode()
         assert p.returncode == 130, text
         assert "Traceback" not in text and len(text.strip().splitlines()) == 1, text
-        assert "interrupted (Ctrl-C)" in text
+        # at start-up "interrupted (Ctrl-C)"; once the path runs, the step it stopped in
+        assert "interrupted" in text
 
 
 # --- the local cluster's private scratch directory -----------------------------------
