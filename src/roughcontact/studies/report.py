@@ -30,55 +30,11 @@ from .._io import output_directory, write_bytes_atomic, write_netcdf_atomic
 from .._validate import json_safe
 from . import claims as _claims
 from . import criteria_claims as _cc
-from .collect import STEP_VARIABLES, TIMINGS, read_collected
+from .collect import read_collected
+from .report_tables import STEP_COLUMNS as STEP_COLUMNS  # public, kept here too
+from .report_tables import csv_bytes, sets_frame, steps_frame, tasks_frame
 
 __all__ = ["render_report", "write_report"]
-
-
-#: The per-step variables of the steps table (no wall-clock times).
-STEP_COLUMNS = tuple(v for v in STEP_VARIABLES if v not in TIMINGS)
-
-
-# ------------------------------------------------------------------------- tables
-def _tasks_frame(ds):
-    import pandas as pd
-
-    cols = {"task": np.asarray(ds["task"].values)}
-    for name, var in {**ds.coords, **ds.data_vars}.items():
-        if var.dims == ("task",):
-            cols[name] = np.asarray(var.values)
-    return pd.DataFrame(cols)
-
-
-def _steps_frame(ds):
-    import pandas as pd
-
-    frames = []
-    task_ids = np.asarray(ds["task"].values)
-    n_steps = np.asarray(ds["n_steps"].values, dtype=int)
-    for i, tid in enumerate(task_ids):
-        n = n_steps[i]
-        if n == 0:
-            continue
-        block = {"task": np.repeat(tid, n), "step": np.arange(n)}
-        for name in STEP_COLUMNS:
-            if name in ds.variables:
-                block[name] = np.asarray(ds[name].values)[i, :n]
-        frames.append(pd.DataFrame(block))
-    return pd.concat(frames, ignore_index=True) if frames else pd.DataFrame()
-
-
-def _sets_frame(ds):
-    import pandas as pd
-
-    from .aggregate import aggregate_seeds
-
-    rows = aggregate_seeds(ds)
-    return pd.DataFrame([{k: v for k, v in r.items() if not isinstance(v, list)} for r in rows])
-
-
-def _csv(frame) -> bytes:
-    return frame.to_csv(index=False, float_format="%.10g").encode()
 
 
 # ------------------------------------------------------------------------- text
@@ -195,11 +151,10 @@ def _claim_lines(c) -> list[str]:
     L += [
         "## 2. κ_rep ≈ 2 — two definitions",
         "",
-        "*Paper:* κ_rep close to 2 (Eq. 2, Fig. 2), from its own simulations with this wall.  ",
-        "*Not reproduced with the paper's wall* (the first column below). That the difference "
-        "comes from the wall's finite stiffness is *our* explanation, tested by the hard-wall "
-        "column (same surfaces) and by a 16× stiffer wall (benchmarks/kappa_rep.py: 2.56 "
-        "against 2.46 for the hard wall).  ",
+        "*Paper:* κ_rep close to 2 (Eq. 2, Fig. 2), from its own simulations with this wall. "
+        "*Not reproduced with that wall* (first column); the wall's finite stiffness as the "
+        "cause is *our* explanation, tested by the hard-wall columns and a 16× stiffer wall "
+        "(benchmarks/kappa_rep.py: 2.56 against 2.46 for the hard wall).  ",
         "*Here:* κ_rep = h′rms E* A_rep/N_rep at A_rep = 1 %: the paper's definition (N_rep of "
         "the adhesive run, the 9-3 wall's finite stiffness) and the hard-wall reference on the "
         "same surface (raw site count, and the Yastrebov-corrected area).",
@@ -472,11 +427,11 @@ def write_report(source, out_dir, *, confidence: float = 0.95, dpi: int = 120) -
     data = output_directory(out / "data")
     files.append(write_netcdf_atomic(ds, data / "collected.nc"))
     for name, frame in (
-        ("tasks", _tasks_frame(ds)),
-        ("steps", _steps_frame(ds)),
-        ("parameter_sets", _sets_frame(ds)),
+        ("tasks", tasks_frame(ds)),
+        ("steps", steps_frame(ds)),
+        ("parameter_sets", sets_frame(ds)),
     ):
-        files.append(write_bytes_atomic(data / f"{name}.csv", _csv(frame)))
+        files.append(write_bytes_atomic(data / f"{name}.csv", csv_bytes(frame)))
     text = json.dumps(json_safe(claims), indent=1, sort_keys=True, allow_nan=False)
     files.append(write_bytes_atomic(out / "claims.json", (text + "\n").encode()))
     versions = {
