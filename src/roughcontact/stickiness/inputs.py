@@ -216,6 +216,16 @@ def self_affine_inputs(
         hurst=hurst, rms_slope=rms_slope, short_cutoff=short_cutoff,
         long_cutoff=long_cutoff, size=size, rolloff=rolloff, rms_height=rms_height,
     )  # fmt: skip
+    return _from_moments(
+        m, contact_modulus=contact_modulus, work_of_adhesion=work_of_adhesion,
+        interaction_range=interaction_range, hurst=hurst, youngs_modulus=youngs_modulus,
+        units=units, source="self-affine spectrum (closed form)",
+    )  # fmt: skip
+
+
+def _from_moments(m, *, contact_modulus, work_of_adhesion, interaction_range, hurst,
+                  youngs_modulus, units, source) -> CriterionInputs:  # fmt: skip
+    """:class:`CriterionInputs` from the spectral moments ``m[k] = M_k`` (k = 0, 1, 2, 4)."""
     return CriterionInputs(
         contact_modulus=float(contact_modulus),
         work_of_adhesion=float(work_of_adhesion),
@@ -227,7 +237,7 @@ def self_affine_inputs(
         hurst=float(hurst),
         youngs_modulus=float(youngs_modulus),
         units=units,
-        source="self-affine spectrum (closed form)",
+        source=source,
     )
 
 
@@ -268,19 +278,12 @@ def inputs_from_heights(
     qy = 2 * np.pi * np.fft.fftfreq(ny, d=a)
     q = np.hypot(qx[:, None], qy[None, :])
     m = {k: float(np.sum(q**k * spec)) for k in (0, 1, 2, 4)}
-    return CriterionInputs(
-        contact_modulus=float(contact_modulus),
-        work_of_adhesion=float(work_of_adhesion),
-        interaction_range=float(interaction_range),
-        rms_height=math.sqrt(m[0]),
-        rms_slope=math.sqrt(m[2]),
-        rms_curvature=math.sqrt(m[4]),
-        half_derivative_variance=m[1],
-        hurst=float(hurst),
-        youngs_modulus=float(youngs_modulus),
+    return _from_moments(
+        m, contact_modulus=contact_modulus, work_of_adhesion=work_of_adhesion,
+        interaction_range=interaction_range, hurst=hurst, youngs_modulus=youngs_modulus,
         units=units,
         source="height map (spectral moments" + ("" if periodic else ", Hann window") + ")",
-    )
+    )  # fmt: skip
 
 
 def inputs_from_criterion(

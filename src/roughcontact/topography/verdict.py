@@ -1,31 +1,9 @@
 r"""Is my surface sticky? Eq. 10 of Pastewka & Robbins (2014) for a measured scan (SI).
 
-The criterion (:func:`roughcontact.criterion.stickiness_criterion`) needs the rms slope
-``h'_rms`` and curvature ``h''_rms`` (through ``d_rep = 4 h'_rms/h''_rms``, Eq. 9), and
-both are set by the smallest scales of the roughness, often below what an instrument
-resolves (the paper's Discussion). So the verdict is evaluated as a function of the
-smallest roughness scale ``lambda_s``, from the smallest measured scale ``lambda_c``
-(the reliability cutoff) down to the atomic spacing ``a0``:
-
-* at ``lambda_s = lambda_c`` with the measured statistics (no assumption);
-* below it with the measured self-affine spectrum continued to ``lambda_s``
-  (:meth:`ScaleStatistics.extrapolated_at`, Hurst exponent H fitted to the PSD).
-
-The verdict is **sticky** if the margin ``kappa_rep/kappa_att`` exceeds 1 for every
-``lambda_s`` in ``[a0, lambda_c]``, **not sticky** if it stays below 1 for every one,
-and otherwise **depends on roughness below X** (``sticky = None``), X the largest
-``lambda_s`` at which the verdict flips. The uncertainty of H is propagated: the sweep
-is repeated for H across ``H +- 2 sigma`` (about 95 %), and a verdict that flips for
-any of them is undecided too (X is then the largest flip scale among them). The margin is
-reported at the measured scale (``margin``) and at the atomic scale (``margin_atomic``,
-extrapolated).
-
-``kappa_rep = 2`` is the paper's choice (Fig. 4, "the shaded region shows the
-prediction for adhesion using the value kappa_rep = 2"); give ``kappa_rep=`` to use a
-measured one.
-
-Reference: L. Pastewka and M. O. Robbins, PNAS 111, 3298 (2014), Eqs. 9, 10 and the
-Discussion.
+It reads and detrends the scan, finds the instrument's limits, computes the
+scale-dependent statistics and returns the verdict of Eq. 10 against the smallest
+roughness scale (how it is swept and why: :mod:`~roughcontact.topography.sweep`), the
+verdict under the other kappa_rep, every note and, on request, the simulation.
 
 The pieces live in their own modules and are importable from here as before:
 :mod:`~roughcontact.topography.sweep` (:class:`Verdict`, :func:`stickiness_verdict`),
