@@ -186,8 +186,9 @@ def demo_study(size: int, seeds) -> dict:
 
 
 def check_demo_study(size: int, seeds: int) -> None:
-    """Refuse (ParameterError, one line) a demo study of ``seeds`` realisations on
-    ``size``² grids that the study's checks would refuse, before any work."""
+    """Refuse (ParameterError, one line), before any work, a demo study of ``seeds``
+    realisations on grids of ``size`` x ``size`` points that the study's checks would
+    refuse."""
     from ..studies import study_from_dict
     from ..studies.spec import MAX_TASKS
 
