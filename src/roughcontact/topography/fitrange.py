@@ -61,7 +61,7 @@ NOISE_GAIN = 2.0
 SIGNAL_TO_NOISE = 4.0
 #: Largest standard error of H that still supports an extrapolation.
 MAX_HURST_STDERR = 0.15
-#: Fewest bins between the limits (as ``statistics.MIN_FIT_BINS``, plus margin).
+#: Fewest bins between the limits (as ``hurst.MIN_FIT_BINS``, plus margin).
 MIN_BINS = 4
 
 
