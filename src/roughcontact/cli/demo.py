@@ -1,7 +1,7 @@
 """The demo's non-adhesive load path: :func:`roughcontact.workflows.demo.demo_path`.
 
 Kept for the name ``roughcontact.cli.demo.demo``; the workflow lives in
-:mod:`roughcontact.workflows.demo`, the command (parsing and printing) in :mod:`.main`.
+:mod:`roughcontact.workflows.demo`, the command (parsing and printing) in :mod:`.demo_command`.
 """
 
 from __future__ import annotations

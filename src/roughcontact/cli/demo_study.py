@@ -1,7 +1,7 @@
 """The demo's adhesive study and report: :mod:`roughcontact.workflows.demo` and ``.report``.
 
 Kept for the names it always offered; the workflow lives in :mod:`roughcontact.workflows`,
-the command (parsing and printing) in :mod:`.main`.
+the command (parsing and printing) in :mod:`.demo_command`.
 """
 
 from __future__ import annotations

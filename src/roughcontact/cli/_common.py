@@ -1,0 +1,342 @@
+"""What the ``roughcontact`` commands share: exit codes, the one-line error, the options of
+the substrate, interaction and surface file, the surface loader and the text output's units.
+
+Lattice units by default (a0 = 1, E* = 1); loads are mean pressures N/A0 in units of the
+contact modulus.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import sys
+
+import click
+
+from .._signals import EXIT_TERMINATED, exit_code
+from .._validate import MAX_ITER, PIXEL_SIZE, TOL, ParameterError, click_check, json_safe
+from ..interactions.registry import make_law
+from ..interactions.registry import names as interaction_names
+
+EXIT_BAD_INPUT = 2
+EXIT_NOT_CONVERGED = 3
+EXIT_TARGET_NOT_REACHED = 4
+EXIT_FAILURE = 1  # a step, a task or a write failed (a full disk): nothing finished is lost
+
+
+def _interrupted(err) -> str:
+    """The one-line message of a command stopped by Ctrl-C or SIGTERM."""
+    why = "terminated (SIGTERM)" if exit_code(err) == EXIT_TERMINATED else "interrupted (Ctrl-C)"
+    text = str(err).strip()
+    return text if text.startswith(why) else f"{why}: {text}" if text else why
+
+
+def _fail(message: str, code: int = EXIT_BAD_INPUT):
+    message = " ".join(str(message).split())  # one line, whatever the message holds
+    click.echo(f"roughcontact: error: {message}", err=True)
+    sys.exit(code)
+
+
+def _warning_line(message, category, filename, lineno, file=None, line=None):
+    """A warning as one line on stderr (not Python's two, with the source line)."""
+    text = " ".join(str(message).split())
+    click.echo(f"roughcontact: warning: {text}", err=True)
+
+
+def _json(obj) -> str:
+    """One JSON object: NaN and infinities become null (JSON has neither)."""
+    return json.dumps(json_safe(obj), allow_nan=False)
+
+
+def _interaction_options(f):
+    opts = [
+        click.option(
+            "--interaction",
+            type=click.Choice(INTERACTIONS),
+            default="hardwall",
+            show_default=True,
+            help="Surface interaction law.",
+        ),
+        click.option(
+            "--work-of-adhesion",
+            "work",
+            type=float,
+            default=None,
+            help="w (energy per area, units of E* x length).",
+        ),
+        click.option(
+            "--adhesion-length",
+            "adhesion_length",
+            type=float,
+            default=None,
+            help="ℓa = w/E* (length, > 0): w = ℓa x --modulus; instead of --work-of-adhesion.",
+        ),
+        click.option(
+            "--range",
+            "range_",
+            type=float,
+            default=None,
+            help="Δr (lj93smooth), ρ (exponential), cohesive width (dugdale).",
+        ),
+        click.option(
+            "--stiffness",
+            type=float,
+            default=None,
+            help="lj93smooth site stiffness per area k = V''(a0) (default E*/(2 a0)).",
+        ),
+        click.option(
+            "--core-stiffness",
+            type=float,
+            default=None,
+            help="exponential: soft repulsive core k_c for g < 0 (default: hard wall).",
+        ),
+    ]
+    for o in reversed(opts):
+        f = o(f)
+    return f
+
+
+INTERACTIONS = list(interaction_names())  # hardwall, lj93smooth, lj93, exponential, dugdale
+
+
+def _make_interaction(
+    name, work, range_, stiffness, core_stiffness, modulus, pixel_size, adhesion_length=None
+):
+    """The law of the ``--interaction`` options (checked and built by the registry)."""
+    return make_law(
+        name,
+        contact_modulus=modulus,
+        pixel_size=pixel_size,
+        spelling="cli",
+        adhesion_length=adhesion_length,
+        work_of_adhesion=work,
+        range=range_,
+        stiffness=stiffness,
+        core_stiffness=core_stiffness,
+    )
+
+
+def _substrate(shape, modulus, pixel_size, thickness, poisson, base, periodic=True):
+    from ..elastic import Substrate
+
+    return Substrate(
+        shape,
+        contact_modulus=modulus,
+        pixel_size=pixel_size,
+        thickness=thickness,
+        poisson=poisson,
+        base=base,
+        periodic=periodic,
+    )
+
+
+def _substrate_options(f):
+    opts = [
+        click.option(
+            "--modulus",
+            type=float,
+            default=1.0,
+            show_default=True,
+            help="Contact modulus E* = E/(1-ν²).",
+        ),
+        click.option(
+            "--pixel-size",
+            type=float,
+            default=1.0,
+            show_default=True,
+            callback=click_check(PIXEL_SIZE),
+            help=f"a0 (length, {PIXEL_SIZE.accepted}).",
+        ),
+        click.option(
+            "--thickness", type=float, default=None, help="Layer thickness (default: half-space)."
+        ),
+        click.option(
+            "--poisson",
+            type=float,
+            default=0.5,
+            show_default=True,
+            help="ν in [0, 0.5] (layers only).",
+        ),
+        click.option(
+            "--base",
+            type=click.Choice(["bonded", "frictionless"]),
+            default="bonded",
+            show_default=True,
+            help="Layer attachment to its rigid base.",
+        ),
+        click.option(
+            "--non-periodic",
+            "non_periodic",
+            is_flag=True,
+            default=False,
+            help="Free boundary: press the surface as measured, without periodic images "
+            "(a half-space on a zero-padded grid; not with --thickness).",
+        ),
+        click.option(
+            "--tol",
+            type=float,
+            default=None,
+            callback=click_check(TOL),
+            help=f"Solver tolerance, {TOL.accepted} (default 1e-8; 1e-6, its floor, with "
+            "--dtype float32).",
+        ),
+        click.option(
+            "--max-iter",
+            type=int,
+            default=5000,
+            show_default=True,
+            callback=click_check(MAX_ITER),
+            help=f"Iteration cap per state ({MAX_ITER.accepted}).",
+        ),
+        click.option(
+            "--device",
+            default="cpu",
+            show_default=True,
+            help="Where to compute: cpu, cuda or cuda:N (an NVIDIA GPU through CuPy).",
+        ),
+        click.option(
+            "--dtype",
+            type=click.Choice(["float64", "float32"]),
+            default="float64",
+            show_default=True,
+            help="Floating-point precision of the computation.",
+        ),
+    ]
+    for o in reversed(opts):
+        f = o(f)
+    return f
+
+
+def _surface_file_options(f):
+    """--channel, --detrend and --fill-missing of the commands that read a SURFACE file."""
+    opts = [
+        click.option(
+            "--channel",
+            default=None,
+            help="Channel of an instrument file, by name or index (default: the file's "
+            "default channel).",
+        ),
+        click.option(
+            "--detrend",
+            type=click.Choice(["none", "height", "plane", "curvature"]),
+            default="none",
+            show_default=True,
+            help="Least-squares mean, tilt or 2nd-order polynomial removed from SURFACE.",
+        ),
+        click.option(
+            "--fill-missing/--no-fill-missing",
+            default=None,
+            help="Fill missing points of an instrument file of any fraction (harmonic "
+            "interpolation) / refuse any. Default: fill up to 1 % (said on stderr), refuse more.",
+        ),
+    ]
+    for o in reversed(opts):
+        f = o(f)
+    return f
+
+
+def _load_surface(surface_file, channel, detrend, fill_missing, pixel_size):
+    """Heights, pixel size and (instrument files) a summary dict of SURFACE.
+
+    A .npy or text file is read as always, in the length unit of --pixel-size (summary
+    None). An instrument file (AFM, interferometer, ...: anything else) is read through
+    SurfaceTopography in metres with the file's own pixel size, which wins: a
+    --pixel-size given that differs from it is a one-line error.
+    """
+    import numpy as np
+
+    from .._plausibility import check_heights
+    from ..surfaces import load_heights
+    from ..topography import Topography, file_kind, load_topography
+    from ..topography import detrend as remove_trend
+
+    if file_kind(surface_file) != "instrument":
+        try:
+            h = load_heights(surface_file, channel=channel)
+        except ParameterError as err:  # NaN points: the missing-data policy of every reader
+            if "found NaN" not in str(err):
+                raise
+            h = np.array(_filled(load_topography(surface_file, fill_missing=fill_missing)).heights)
+            if h.ndim != 2:
+                raise ParameterError(f"{err} (and a line scan: expected a 2D height map)") from None
+        if detrend != "none":
+            h = np.array(remove_trend(Topography(h, pixel_size), detrend).heights)
+        check_heights(h, f"SURFACE {str(surface_file)!r}")  # a flat surface: no contact path
+        return h, pixel_size, None
+    topo = _filled(load_topography(surface_file, channel=channel, fill_missing=fill_missing))
+    if topo.dim != 2:
+        raise ParameterError(
+            f"SURFACE {str(surface_file)!r} is a line scan of {topo.shape[0]} points; "
+            "expected a 2D height map"
+        )
+    px = topo.pixel_size[0]
+    if not math.isclose(px, topo.pixel_size[1], rel_tol=1e-9):
+        raise ParameterError(
+            f"SURFACE {str(surface_file)!r} has non-square pixels {topo.pixel_size} m; "
+            "accepted: square pixels"
+        )
+    source = click.get_current_context().get_parameter_source("pixel_size")
+    if source is not click.core.ParameterSource.DEFAULT and not math.isclose(
+        pixel_size, px, rel_tol=1e-6
+    ):
+        raise ParameterError(
+            f"--pixel-size {pixel_size:g} conflicts with the pixel size {px:.6g} m stored in "
+            f"{str(surface_file)!r}; leave --pixel-size out (instrument files: lengths in m)"
+        )
+    topo = remove_trend(topo, detrend)
+    return np.array(topo.heights), px, topo.to_dict()
+
+
+def _filled(topo):
+    """``topo``, after saying on stderr what was filled (the line every scan reader prints)."""
+    if topo.info.get("missing_data"):
+        from ..topography.missing import fill_note
+
+        click.echo(f"note: {fill_note(topo.info['missing_data'], topo.heights.size)}", err=True)
+    return topo
+
+
+def _describe_surface(s) -> str:
+    """One line on an instrument file's channel, grid and units (text output)."""
+    nx, ny = s["shape"]
+    return (
+        f"{s['source']}, channel {s['channel']!r}, {nx} x {ny} points, pixel size "
+        f"{s['pixel_size'][0]:.6g} m (from the file), heights in m (file: "
+        f"{s['height_unit']}), detrend {s['info'].get('detrend', 'none')}"
+    )
+
+
+def _units(modulus, pixel_size, surface=None) -> dict:
+    """The unit, in words, of every number the text output prints (lattice units: 1, 1).
+
+    ``surface``: the summary of an instrument file (lengths in metres), or None.
+    """
+    length = "length, a0 units" if pixel_size == 1 else f"length, units of a0 = {pixel_size:g}"
+    if surface is not None:
+        length = "length, m"
+    pressure = "N/A0, units of E*" if modulus == 1 else f"N/A0, pressure, units of E* = {modulus:g}"
+    area = "fraction of A0"
+    inverse_length = "per A0, 1/length" + ("" if pixel_size == 1 else f" (a0 = {pixel_size:g})")
+    if surface is not None:
+        inverse_length = "per A0, 1/m"
+    return {
+        "offset": length,
+        "mean_gap": length,
+        "load": pressure,
+        "repulsive_load": pressure,
+        "attractive_load": pressure,
+        "pull_off": pressure,
+        "repulsive_area": area,
+        "attractive_area": area,
+        "corrected_repulsive_area": area,
+        "perimeter": inverse_length,
+        "perimeter_edges": "nearest-neighbour bonds",
+        "residual": "the solver's convergence measure",
+        "solve_seconds": "s",
+        "jumps": "step indices",
+    }
+
+
+def _line(key, value, unit, width) -> str:
+    """``key: value (unit)`` for the text output."""
+    return f"{key:>{width}}: {value}" + (f" ({unit})" if unit else "")
