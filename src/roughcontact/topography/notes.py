@@ -168,11 +168,18 @@ def _short(v) -> str:
     return {True: "sticky", False: "not sticky"}.get(v.sticky, "undecided")
 
 
+#: How the simulation's interaction is named in its notes (by the law's registry name).
+_WALLS = {
+    "dugdale": "a Maugis-Dugdale zone (stress w/range up to the gap range) on a hard wall",
+    "lj93smooth": "the paper's smoothed 9-3 wall",
+}
+
+
 def simulation_notes(surface, runs, law, a0, hurst_min, short_cutoff) -> list:
     """The notes of :func:`~.simulate.simulate_stickiness` (lengths of ``law`` in a0)."""
     notes = [
-        f"simulation: the paper's smoothed 9-3 wall with range {length_text(law.range * a0)} "
-        f"({law.name}), on synthetic "
+        f"simulation: {_WALLS.get(law.name, law.name)} with range "
+        f"{length_text(law.range * a0)}, on synthetic "
         f"surfaces with lambda_s = {short_cutoff:g} a0 and h'rms = {surface['rms_slope']:.3g}, "
         "the scan's h'rms extrapolated to lambda_s"
     ]
