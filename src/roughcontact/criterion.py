@@ -23,129 +23,15 @@ forms the first factor of Eq. 10, ``p_rep = h'_rms E*/kappa_rep`` and ``w/Delta_
 from __future__ import annotations
 
 import math
-import re
 from dataclasses import dataclass
 
 from ._validate import ParameterError, json_ready, positive
 from .theory.pastewka_robbins import KAPPA_REP, STICKINESS_THRESHOLD, predict
+from .units import DIMENSIONS, parse_quantity
 
 __all__ = ["DIMENSIONS", "StickinessCriterion", "parse_quantity", "stickiness_criterion"]
 
-# Dimensions as exponents of (kg, m, s).
-DIMENSIONS = {
-    "pressure": ((1, -1, -2), "Pa", "10 MPa"),
-    "energy per area": ((1, 0, -2), "J/m^2", "50 mJ/m^2"),
-    "length": ((0, 1, 0), "m", "0.5 nm"),
-    "inverse length": ((0, -1, 0), "1/m", "0.2 1/nm"),
-    "dimensionless": ((0, 0, 0), "", "0.1"),
-}
-_UNITS = {  # symbol: (factor to SI, dimension)
-    "m": (1.0, (0, 1, 0)),
-    "Pa": (1.0, (1, -1, -2)),
-    "N": (1.0, (1, 1, -2)),
-    "J": (1.0, (1, 2, -2)),
-    "bar": (1e5, (1, -1, -2)),
-    "Å": (1e-10, (0, 1, 0)),
-    "angstrom": (1e-10, (0, 1, 0)),
-}
-_PREFIXES = {"T": 1e12, "G": 1e9, "M": 1e6, "k": 1e3, "c": 1e-2, "m": 1e-3, "u": 1e-6,
-             "µ": 1e-6, "μ": 1e-6, "n": 1e-9, "p": 1e-12, "f": 1e-15}  # fmt: skip
-_NUMBER = re.compile(r"^\s*([+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)\s*(.*?)\s*$")
-_TERM = re.compile(r"^([A-Za-zµμÅ]+)(?:\^?([+-]?\d+))?$")
-
-
-def _unit(symbol: str, name: str, text: str):
-    if symbol in _UNITS:
-        return _UNITS[symbol]
-    if len(symbol) > 1 and symbol[0] in _PREFIXES and symbol[1:] in _UNITS:
-        f, dim = _UNITS[symbol[1:]]
-        return _PREFIXES[symbol[0]] * f, dim
-    raise ParameterError(
-        f"{name}: unknown unit {symbol!r} in {text!r} (known: m, Pa, N, J, bar, Å with "
-        "prefixes T G M k c m u/µ n p f, e.g. '10 MPa', '50 mJ/m^2', '0.5 nm')"
-    )
-
-
-def _a(noun: str) -> str:
-    return ("an " if noun[:1] in "aeiou" else "a ") + noun
-
-
-def _dimension_name(dim) -> str:
-    for k, (d, _, _) in DIMENSIONS.items():
-        if d == tuple(dim):
-            return k
-    other = {(1, 2, -2): "energy (J)", (1, 1, -2): "force (N)", (0, 2, 0): "area (m^2)"}
-    if tuple(dim) in other:
-        return other[tuple(dim)]
-    parts = [f"{b}^{e}" for b, e in zip(("kg", "m", "s"), dim, strict=True) if e]
-    return " ".join(parts)
-
-
-def parse_quantity(value, dimension: str, name: str = "value") -> float:
-    """Convert a number or a string with units to SI, checking its dimension.
-
-    Parameters
-    ----------
-    value : float or str
-        A plain number (already SI) or ``"<number> <unit>"``. The unit is a product of
-        symbols with optional SI prefix and integer power (``m^2``, ``m2``, ``m^-1``),
-        with ``/`` dividing by every following symbol: ``mJ/m^2``, ``J/m2``, ``N/m``,
-        ``1/nm``, ``GPa``, ``um`` or ``µm``. Symbols: m, Pa, N, J, bar, Å.
-    dimension : str
-        One of ``DIMENSIONS``: ``"pressure"``, ``"energy per area"``, ``"length"``,
-        ``"inverse length"``, ``"dimensionless"``.
-    name : str
-        The parameter's name, used in error messages.
-
-    Returns
-    -------
-    float
-        The value in SI units (Pa, J/m^2 = N/m, m, 1/m).
-
-    Raises
-    ------
-    ParameterError
-        Unparseable text, an unknown unit, or a unit of another dimension (the message
-        names the parameter and the expected dimension).
-    """
-    if dimension not in DIMENSIONS:
-        raise ParameterError(f"dimension must be one of {list(DIMENSIONS)}, got {dimension!r}")
-    expected, si_unit, example = DIMENSIONS[dimension]
-    if isinstance(value, bool):
-        raise ParameterError(f"{name} must be a number or a string with units, got {value!r}")
-    if isinstance(value, (int, float)):
-        return float(value)
-    text = str(value).strip()
-    m = _NUMBER.match(text)
-    if not m:
-        raise ParameterError(
-            f"{name}: cannot read {text!r}; expected a number with {dimension} units, "
-            f"e.g. {example!r}"
-        )
-    number, unit = float(m.group(1)), m.group(2).replace("·", "*").replace(" ", "*")
-    if not unit:
-        return number  # a plain number is SI
-    factor, dim = 1.0, [0, 0, 0]
-    for i, part in enumerate(unit.split("/")):
-        sign = 1 if i == 0 else -1
-        for term in filter(None, part.split("*")):
-            if term == "1" and sign == 1:
-                continue
-            t = _TERM.match(term)
-            if not t:
-                raise ParameterError(f"{name}: cannot read the unit {unit!r} in {text!r}")
-            f, d = _unit(t.group(1), name, text)
-            p = sign * int(t.group(2) or 1)
-            factor *= f**p
-            dim = [a + p * b for a, b in zip(dim, d, strict=True)]
-    if tuple(dim) != expected:
-        got = _dimension_name(dim)
-        got = "dimensionless number" if got == "dimensionless" else got
-        hint = f" (SI: {si_unit})" if si_unit else ""
-        raise ParameterError(
-            f"{name} must be {_a(dimension)}{hint}, e.g. {example!r}; got {text!r}, {_a(got)}"
-        )
-    return number * factor
+# The unit table and parser live in roughcontact.units; these names stay importable here.
 
 
 def _si(value, dimension: str, name: str) -> float:

@@ -13,19 +13,13 @@ import json
 import click
 
 from .._validate import ParameterError
+from ..units import format_quantity
 
 __all__ = ["criterion"]
 
 
-def _fmt(value: float, unit: str) -> str:
-    """``value`` with an SI prefix, e.g. ``5e-09, "m"`` -> ``"5 nm"``."""
-    if value == 0 or not (abs(value) < float("inf")):
-        return f"{value:.4g} {unit}"
-    for factor, prefix in ((1e9, "G"), (1e6, "M"), (1e3, "k"), (1, ""), (1e-3, "m"),
-                           (1e-6, "u"), (1e-9, "n"), (1e-12, "p")):  # fmt: skip
-        if abs(value) >= factor:
-            return f"{value / factor:.4g} {prefix}{unit}"
-    return f"{value:.4g} {unit}"
+# one SI-prefix formatter for the package, in roughcontact.units
+_fmt = format_quantity
 
 
 def _report(r) -> str:

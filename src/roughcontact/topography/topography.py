@@ -17,36 +17,12 @@ import numpy as np
 
 from .._validate import real_array
 from ..errors import ParameterError
+from ..units import LENGTH_UNITS, length_factor
 
 __all__ = ["LENGTH_UNITS", "Topography", "length_factor", "pixel_sizes"]
 
-#: Length units and their value in metres. Instruments write the micro sign (U+00B5), the
-#: Greek mu (U+03BC) or ``um``; Angstrom as the symbol (U+212B or U+00C5) or ``A``.
-LENGTH_UNITS = {
-    "km": 1e3,
-    "m": 1.0,
-    "dm": 1e-1,
-    "cm": 1e-2,
-    "mm": 1e-3,
-    "\u00b5m": 1e-6,
-    "\u03bcm": 1e-6,
-    "um": 1e-6,
-    "micron": 1e-6,
-    "nm": 1e-9,
-    "\u00c5": 1e-10,
-    "\u212b": 1e-10,
-    "A": 1e-10,
-    "angstrom": 1e-10,
-    "pm": 1e-12,
-}
-
-
-def length_factor(name: str, unit) -> float:
-    """Metres per ``unit`` (a key of :data:`LENGTH_UNITS`), else a one-line ParameterError."""
-    if isinstance(unit, str) and unit.strip() in LENGTH_UNITS:
-        return LENGTH_UNITS[unit.strip()]
-    accepted = ", ".join(sorted({"km", "m", "mm", "um", "nm", "A", "pm"}))
-    raise ParameterError(f"{name} must be a length unit ({accepted}, ...), got {unit!r}")
+# The length-unit table and its parser live in roughcontact.units (one table for every
+# reader of units); LENGTH_UNITS and length_factor stay importable here.
 
 
 def pixel_sizes(value, ndim: int) -> tuple:
