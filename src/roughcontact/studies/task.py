@@ -118,15 +118,19 @@ def with_fields(ds, extra: dict):
     return add_fields(ds, extra)
 
 
-def compute_task(task: Task):
-    """Run one task in this process and return its dataset (path, provenance, analysis)."""
-    from ..analysis.path_analysis import analyze_path
+def task_inputs(params: dict, path_settings: dict):
+    """The surface, substrate, law and path values of a task's parameters.
+
+    ``params``: a task's parameters (:attr:`Task.params`, or read back from its file with
+    :func:`~roughcontact.studies.store.task_parameters`); ``path_settings``: its
+    ``[path]`` settings. Returns ``(heights, substrate, law, values)`` in the study's
+    units; the one place a task's inputs are built, so a figure that re-follows a task
+    solves exactly the task's problem.
+    """
     from ..elastic import Substrate
-    from ..solvers import approach_retract
     from ..surfaces import self_affine
 
-    p, s = task.params, task.settings
-    t0, started = time.perf_counter(), time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())
+    p = params
     n = p["size"]
     heights = self_affine(
         (n, n),
@@ -149,7 +153,17 @@ def compute_task(task: Task):
         periodic=p.get("periodic", True),
     )
     law = make_interaction(p)
-    values = path_values(s["path"], heights, law, p)
+    return heights, substrate, law, path_values(path_settings, heights, law, p)
+
+
+def compute_task(task: Task):
+    """Run one task in this process and return its dataset (path, provenance, analysis)."""
+    from ..analysis.path_analysis import analyze_path
+    from ..solvers import approach_retract
+
+    p, s = task.params, task.settings
+    t0, started = time.perf_counter(), time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())
+    heights, substrate, law, values = task_inputs(p, s["path"])
     nearest = AreaFields(s["output"].get("fields_at_area", ()), approach_steps=len(values))
     t1 = time.perf_counter()
     ds = approach_retract(

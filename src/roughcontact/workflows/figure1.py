@@ -23,37 +23,11 @@ __all__ = ["same_area_maps"]
 
 def _inputs(ds):
     """Heights, substrate, law and approach values of a study's task file ``ds``."""
-    from ..elastic import Substrate
-    from ..studies.schema import make_interaction
     from ..studies.store import task_parameters
-    from ..studies.task import path_values
-    from ..surfaces import self_affine
+    from ..studies.task import task_inputs
 
-    p = task_parameters(ds.attrs)
     settings = json.loads(ds.attrs["task_settings"])
-    n = p["size"]
-    heights = self_affine(
-        (n, n),
-        hurst=p["hurst"],
-        rms_slope=p["rms_slope"],
-        rms_height=p["rms_height"],
-        short_cutoff=p["short_cutoff"],
-        long_cutoff=p["long_cutoff"],
-        rolloff=p["rolloff"],
-        pixel_size=p["pixel_size"],
-        seed=p["seed"],
-    )
-    substrate = Substrate(
-        (n, n),
-        contact_modulus=p["contact_modulus"],
-        pixel_size=p["pixel_size"],
-        thickness=p["thickness"],
-        poisson=p["poisson"],
-        base=p["base"],
-        periodic=p.get("periodic", True),
-    )
-    law = make_interaction(p)
-    return heights, substrate, law, path_values(settings["path"], heights, law, p), settings
+    return (*task_inputs(task_parameters(ds.attrs), settings["path"]), settings)
 
 
 def _refined(ds, target, substeps):
