@@ -25,7 +25,7 @@ from pathlib import Path
 
 from .errors import ParameterError
 
-__all__ = ["npy_header", "open_input", "regular_input"]
+__all__ = ["npy_header", "open_input", "read_array", "regular_input"]
 
 _KINDS = (
     (stat.S_ISDIR, "a directory"),
@@ -172,3 +172,48 @@ def npy_header(path, expected: str = "") -> tuple:
             f"data{tail}",
         )
     return tuple(shape), dtype
+
+
+def read_array(p: Path, expected: str):
+    """The array of a ``.npy`` or plain text file ``p``, as float64 (any number of
+    dimensions): the one reader of plain height files (``load_heights``, ``load_topography``).
+
+    Text files hold one grid row per line, values separated by whitespace or commas,
+    ``#`` comments. Boolean, complex, object and text arrays are rejected, never
+    converted; every failure is one :class:`ParameterError` naming the file and
+    ``expected``.
+    """
+    import io as _io
+    import warnings
+
+    import numpy as np
+
+    from ._validate import real_array
+
+    if p.suffix.lower() == ".npy":  # the claimed size against the file's, before numpy
+        npy_header(p, expected)
+    try:
+        if p.suffix.lower() == ".npy":
+            with open_input(p, "path", expected) as f:
+                data = np.load(f, allow_pickle=False)
+        else:
+            with open_input(p, "path", expected) as f:
+                text = f.read().decode("utf-8").replace(",", " ")
+            with warnings.catch_warnings():  # an empty file: the shape check says it in one line
+                warnings.simplefilter("ignore", UserWarning)
+                data = np.loadtxt(_io.StringIO(text), dtype=float)
+    except ParameterError:
+        raise
+    except (OSError, ValueError, UnicodeDecodeError, EOFError) as exc:
+        raise ParameterError(
+            f"path {str(p)!r}: could not read heights ({exc}); expected {expected}"
+        ) from None
+    try:
+        # the dtype first: bool, complex (imaginary part), object and text never convert
+        return np.asarray(real_array("heights", data), dtype=np.float64)
+    except ParameterError as exc:
+        raise ParameterError(f"path {str(p)!r}: expected {expected} ({exc})") from None
+    except (TypeError, ValueError, OverflowError):
+        raise ParameterError(
+            f"path {str(p)!r}: data of dtype {data.dtype} is not numeric; expected {expected}"
+        ) from None

@@ -63,7 +63,7 @@ def criterion(ds, *, confidence=0.95) -> dict:
     against the predicted one with the measured κ_rep and with κ_rep = 2; and per task
     (one seed each: "sticky"/"not sticky", never undecided).
     """
-    from .claims import DISAGREEMENT_KEYS, _analysed, _task
+    from ._claim_data import DISAGREEMENT_KEYS, _analysed, _task
 
     rows = aggregate_seeds(ds, confidence=confidence)
     rows = [r for r in rows if r["analysed"]]
@@ -101,7 +101,7 @@ def necessary_condition(ds, *, confidence=0.95) -> dict:
     condition assumes Δr ≈ a0 ≤ δh; ``applicable`` counts the sets where the analysis
     found that true.
     """
-    from .claims import _analysed, _levels, _task
+    from ._claim_data import _analysed, _levels, _task
 
     rows = [r for r in aggregate_seeds(ds, confidence=confidence) if r["analysed"]]
     bound = NECESSARY_CONDITION_CONSTANT / KAPPA_REP
@@ -259,7 +259,7 @@ def adhesion_hysteresis(ds, *, confidence=0.95) -> dict:
     of tasks whose cycle is not closed.
     """
     from ..analysis.hysteresis import hysteresis_from_steps
-    from .claims import _levels, _spread
+    from ._claim_data import _levels, _spread
 
     if "offset" not in ds.variables or "branch" not in ds.variables:
         return {"tasks": 0, "by_adhesion_length": []}

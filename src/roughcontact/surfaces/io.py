@@ -11,13 +11,13 @@ from __future__ import annotations
 
 import io as _io
 import os
-import warnings
 from pathlib import Path
 
 import numpy as np
 
 from .._backend import to_numpy
-from .._validate import ParameterError, heights2d, real_array
+from .._files import read_array, regular_input
+from .._validate import ParameterError, heights2d
 
 __all__ = ["load_heights", "save_heights"]
 
@@ -27,45 +27,12 @@ _EXPECTED = "a 2D array (at least 2x2) of finite real heights with a finite rms"
 def _existing_file(path) -> Path:
     """``path`` if it is a regular file: a FIFO or device is refused before it is opened
     (reading it could block forever), a missing file in one line."""
-    from .._files import regular_input
-
     return regular_input(path, "path", f"a .npy, text or instrument file holding {_EXPECTED}")
 
 
 def _read_array(p: Path, expected: str = _EXPECTED) -> np.ndarray:
-    """The array of a ``.npy`` or plain text file, as float64 (any number of dimensions).
-
-    Boolean, complex, object and text arrays are rejected, never converted.
-    """
-    from .._files import npy_header, open_input
-
-    if p.suffix.lower() == ".npy":  # the claimed size against the file's, before numpy
-        npy_header(p, expected)
-    try:
-        if p.suffix.lower() == ".npy":
-            with open_input(p, "path", expected) as f:
-                data = np.load(f, allow_pickle=False)
-        else:
-            with open_input(p, "path", expected) as f:
-                text = f.read().decode("utf-8").replace(",", " ")
-            with warnings.catch_warnings():  # an empty file: the shape check says it in one line
-                warnings.simplefilter("ignore", UserWarning)
-                data = np.loadtxt(_io.StringIO(text), dtype=float)
-    except ParameterError:
-        raise
-    except (OSError, ValueError, UnicodeDecodeError, EOFError) as exc:
-        raise ParameterError(
-            f"path {str(p)!r}: could not read heights ({exc}); expected {expected}"
-        ) from None
-    try:
-        # the dtype first: bool, complex (imaginary part), object and text never convert
-        return np.asarray(real_array("heights", data), dtype=np.float64)
-    except ParameterError as exc:
-        raise ParameterError(f"path {str(p)!r}: expected {expected} ({exc})") from None
-    except (TypeError, ValueError, OverflowError):
-        raise ParameterError(
-            f"path {str(p)!r}: data of dtype {data.dtype} is not numeric; expected {expected}"
-        ) from None
+    """:func:`roughcontact._files.read_array` with this module's expectation."""
+    return read_array(p, expected)
 
 
 def load_heights(path, channel=None) -> np.ndarray:

@@ -145,9 +145,9 @@ def load_topography(
         channel (listing the available ones) or a channel that holds no heights;
         more missing points than ``fill_missing`` allows; SurfaceTopography not installed.
     """
-    from ..surfaces.io import _existing_file
+    from .._files import regular_input
 
-    p = _existing_file(path)
+    p = regular_input(path, "path", f"a .npy, text or instrument file ({_ACCEPTED})")
     kind = file_kind(p)
     if kind == "instrument":
         try:
@@ -179,7 +179,7 @@ def _plausible(p, kind, topo) -> None:
 
 
 def _read_plain(p, kind, channel, periodic, pixel_size, height_unit, fill_missing):
-    from ..surfaces.io import _read_array
+    from .._files import read_array
 
     if channel not in (None, 0, "0", "heights"):
         raise ParameterError(
@@ -187,7 +187,7 @@ def _read_plain(p, kind, channel, periodic, pixel_size, height_unit, fill_missin
             f"one channel), got {channel!r}"
         )
     expected = "a 1D or 2D array (at least 2 points per axis) of real heights"
-    data = _read_array(p, expected)
+    data = read_array(p, expected)
     if data.ndim not in (1, 2) or min(data.shape, default=0) < 2:
         raise ParameterError(f"path {str(p)!r}: expected {expected}, got shape {data.shape}")
     info = {"format": kind}

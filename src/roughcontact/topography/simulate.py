@@ -68,7 +68,7 @@ import numpy as np
 
 from .._validate import ParameterError, Range, json_safe
 from .simulate_units import SIMULATION_UNITS
-from .synthetic import HURST_MIN, SHORT_CUTOFF, synthetic_surface
+from .synthetic import HURST_MIN, SHORT_CUTOFF, SIZE, synthetic_surface
 
 __all__ = [
     "ADHESION_RANGE",
@@ -83,9 +83,6 @@ __all__ = [
     "synthetic_surface",
 ]
 
-#: Grid size n of the synthetic surface (sites per axis). Below 64 the 1 % contact area
-#: holds too few sites; above 1024 a CPU needs hours.
-SIZE = Range(64, 1024, integer=True)
 #: Number of surface realisations (seeds 1, 2, ...).
 SEEDS = Range(1, 32, integer=True)
 #: l_a/a0 = w/(E* a0) the simulation handles with the paper's parametrisation (module

@@ -2,9 +2,13 @@
 
 from __future__ import annotations
 
-from .._validate import HURST
+from .._validate import HURST, Range
 
-__all__ = ["HURST_MIN", "SHORT_CUTOFF", "synthetic_surface"]
+__all__ = ["HURST_MIN", "SHORT_CUTOFF", "SIZE", "synthetic_surface"]
+
+#: Grid size n of the synthetic surface (sites per axis). Below 64 the 1 % contact area
+#: holds too few sites; above 1024 a CPU needs hours.
+SIZE = Range(64, 1024, integer=True)
 
 #: lambda_s/a0 of the synthetic surface: the paper's smallest short cutoff.
 SHORT_CUTOFF = 4.0
@@ -35,7 +39,6 @@ def synthetic_surface(stats, *, atomic_spacing: float, size: int = 256, seed=1):
         ``short_cutoff``, ``long_cutoff`` (a0).
     """
     from ..surfaces import self_affine
-    from .simulate import SIZE
 
     n = SIZE.check("simulate_size", size)
     a0 = float(atomic_spacing)
