@@ -18,31 +18,15 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from _helpers import DATA, POSIX, SMOKE
+from _helpers import cli_one_line_error as _one_line
+from _helpers import random_surface as _surface
 from click.testing import CliRunner
 
 from roughcontact import ParameterError, _io, _startup
 from roughcontact.cli.main import main
 from roughcontact.studies import study_from_dict
 from roughcontact.surfaces import load_heights, save_heights
-
-POSIX = pytest.mark.skipif(os.name != "posix", reason="FIFOs, signals")
-DATA = Path(__file__).parent / "data" / "topographies"
-SMOKE = Path(__file__).parents[1] / "studies" / "smoke.toml"
-
-
-def _one_line(result, *words, code=2):
-    assert result.exit_code == code, result.output
-    lines = result.stderr.strip().splitlines()
-    assert len(lines) == 1, result.output
-    assert lines[0].startswith("roughcontact: error: "), result.output
-    for word in words:
-        assert word in lines[0], (word, lines[0])
-    assert "Traceback" not in result.output
-
-
-def _surface(seed=1, n=16):
-    return np.random.default_rng(seed).normal(size=(n, n))
-
 
 # --- bounds before anything starts -----------------------------------------------------
 
