@@ -172,3 +172,29 @@ def test_a_scan_window_estimates_the_moments_of_its_surface():
     rows = {c["key"]: c for c in table["criteria"]}
     assert rows["dahlquist"]["sticky"] is True and table["inputs"]["units"] == "SI"
     assert table["agreement"]["simulation"] == "sticky"
+
+
+def test_each_result_is_its_descriptor_plus_numbers():
+    # one owner: name, reference, formula, threshold, direction and validated regime come
+    # from the criterion's frozen descriptor, whatever the inputs (a verdict or none)
+    from dataclasses import FrozenInstanceError
+
+    from roughcontact.stickiness import DESCRIPTORS
+
+    assert list(DESCRIPTORS) == list(CRITERIA)
+    for inp in (lattice(), lattice(interaction_range=math.nan, rms_height=math.nan,
+                                   half_derivative_variance=math.nan)):  # fmt: skip
+        for key, d in DESCRIPTORS.items():
+            r = evaluate(key, inp)
+            for field in ("key", "name", "reference", "formula", "parameter_symbol",
+                          "threshold", "sticky_below", "validated"):  # fmt: skip
+                assert getattr(r, field) == getattr(d, field), (key, field)
+            assert r.notes[: len(d.notes)] == d.notes
+    with pytest.raises(FrozenInstanceError):
+        DESCRIPTORS["muser"].threshold = 2.0
+
+
+def test_muser_says_its_definition_is_unverified():
+    r = evaluate("muser", lattice())
+    assert any("unverified" in n for n in r.notes) and "unverified" in r.verdict
+    assert "unverified" in format_table(criteria_table(lattice()))

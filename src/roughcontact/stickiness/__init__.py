@@ -1,6 +1,9 @@
 r"""The stickiness criteria of the field, side by side.
 
-Every criterion is one small module with its formula and reference, evaluated on one
+Every criterion is one small module: its frozen
+:class:`~roughcontact.stickiness.result.Criterion` descriptor (key, name, reference,
+formula, parameter symbol, threshold, direction, validated regime) and the computation
+of its parameter, evaluated on one
 :class:`~roughcontact.stickiness.inputs.CriterionInputs` and answering with a
 :class:`~roughcontact.stickiness.result.CriterionResult` (its dimensionless parameter,
 threshold, verdict and where it has been validated):
@@ -30,12 +33,14 @@ from .inputs import (
     self_affine_inputs,
     self_affine_moments,
 )
-from .result import NO_VERDICT, CriterionResult
+from .result import NO_VERDICT, Criterion, CriterionResult
 from .table import agreement, criteria_table, criteria_table_for_heights, format_table
 
 __all__ = [
     "CRITERIA",
+    "DESCRIPTORS",
     "NO_VERDICT",
+    "Criterion",
     "CriterionInputs",
     "CriterionResult",
     "agreement",
@@ -50,10 +55,12 @@ __all__ = [
     "self_affine_moments",
 ]
 
+_MODULES = (pastewka_robbins, persson_tosatti, fuller_tabor, dahlquist, muser)
 #: Every criterion by key, in the order of the tables.
-CRITERIA = {
-    m.KEY: m.evaluate for m in (pastewka_robbins, persson_tosatti, fuller_tabor, dahlquist, muser)
-}
+CRITERIA = {m.KEY: m.evaluate for m in _MODULES}
+#: Every criterion's :class:`~roughcontact.stickiness.result.Criterion` (what it is:
+#: name, reference, formula, threshold, where validated) by key, in table order.
+DESCRIPTORS = {m.KEY: m.DESCRIPTOR for m in _MODULES}
 
 
 def evaluate(key: str, inputs: CriterionInputs, **options) -> CriterionResult:

@@ -16,40 +16,32 @@ from __future__ import annotations
 
 import math
 
-from .result import CriterionResult, decide, no_verdict
+from .result import Criterion, CriterionResult
 
 KEY = "dahlquist"
 #: 0.1 MPa [Pa].
 THRESHOLD_PA = 1.0e5
 VALIDATED = "empirical rule for pressure-sensitive adhesives (tapes); no roughness"
+DESCRIPTOR = Criterion(
+    key=KEY,
+    name="Dahlquist",
+    reference="C. A. Dahlquist, Treatise on Adhesion and Adhesives 2, 219 (1969)",
+    formula="D = E/(0.1 MPa) < 1",
+    parameter_symbol="D",
+    threshold=1.0,
+    sticky_below=True,
+    validated=VALIDATED,
+)
 
 
 def evaluate(inputs) -> CriterionResult:
-    """D = E/0.1 MPa < 1 (SI inputs only)."""
+    """D = E/0.1 MPa < 1 (SI inputs only; E [Pa], else E*)."""
     notes = []
     E = inputs.youngs_modulus
     if math.isnan(E):
         E = inputs.contact_modulus
         notes.append("Young's modulus unknown: E* used (at most 4/3 larger than E)")
     if inputs.units != "SI":
-        D = math.nan
-        sticky, verdict, margin = no_verdict("a modulus rule in Pa; lattice units carry no scale")
-    else:
-        D = E / THRESHOLD_PA
-        sticky, verdict, margin = decide(D, 1.0, True)
-    return CriterionResult(
-        key=KEY,
-        name="Dahlquist",
-        reference="C. A. Dahlquist, Treatise on Adhesion and Adhesives 2, 219 (1969)",
-        formula="D = E/(0.1 MPa) < 1",
-        parameter_symbol="D",
-        parameter=D,
-        threshold=1.0,
-        sticky_below=True,
-        sticky=sticky,
-        verdict=verdict,
-        margin=margin,
-        validated=VALIDATED,
-        notes=tuple(notes),
-        values={"modulus": E},
-    )
+        why = "a modulus rule in Pa; lattice units carry no scale"
+        return DESCRIPTOR.result(notes=notes, values={"modulus": E}, no_verdict_reason=why)
+    return DESCRIPTOR.result(E / THRESHOLD_PA, notes=notes, values={"modulus": E})

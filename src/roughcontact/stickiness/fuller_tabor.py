@@ -18,7 +18,7 @@ pull-off of the summit bed is still ≳ 4 % of the smooth-summit value
 from __future__ import annotations
 
 from ..theory.greenwood_williamson import fuller_tabor_parameter
-from .result import CriterionResult, decide, no_verdict
+from .result import Criterion, CriterionResult
 
 KEY = "fuller_tabor"
 #: Sticky below this θ (a convention, see the module docstring).
@@ -28,37 +28,30 @@ VALIDATED = (
     "Robbins 2014 found simulations qualitatively inconsistent with Greenwood–Williamson "
     "theories"
 )
+DESCRIPTOR = Criterion(
+    key=KEY,
+    name="Fuller & Tabor",
+    reference="K. N. G. Fuller, D. Tabor, Proc. R. Soc. Lond. A 345, 327 (1975)",
+    formula="θ = E* σs^(3/2)/(w Rs^(1/2)) < 10 (Nayak/McCool summits)",
+    parameter_symbol="θ",
+    threshold=THRESHOLD,
+    sticky_below=True,
+    validated=VALIDATED,
+    notes=(
+        "threshold θ = 10 is a convention (pull-off ≈ 4 % of the smooth value)",
+        "E* in θ (authors using K = 4E*/3 get a θ 4/3 larger)",
+    ),
+)
 
 
 def evaluate(inputs, *, threshold: float = THRESHOLD) -> CriterionResult:
     """θ = E* σ_s^(3/2)/(w R_s^(1/2)) < ``threshold`` (needs h_rms and h''_rms)."""
     summits = inputs.summits()
-    values = {}
     if summits is None:
-        theta = float("nan")
-        sticky, verdict, margin = no_verdict("needs h_rms and h''rms (summit statistics)")
-    else:
-        theta = fuller_tabor_parameter(summits.height_std, summits.radius,
-                                       inputs.contact_modulus, inputs.work_of_adhesion)  # fmt: skip
-        sticky, verdict, margin = decide(theta, threshold, True)
-        values = {"summit_height_std": summits.height_std, "summit_radius": summits.radius,
-                  "summit_density": summits.density, "bandwidth": summits.bandwidth}  # fmt: skip
-    return CriterionResult(
-        key=KEY,
-        name="Fuller & Tabor",
-        reference="K. N. G. Fuller, D. Tabor, Proc. R. Soc. Lond. A 345, 327 (1975)",
-        formula="θ = E* σs^(3/2)/(w Rs^(1/2)) < 10 (Nayak/McCool summits)",
-        parameter_symbol="θ",
-        parameter=theta,
-        threshold=threshold,
-        sticky_below=True,
-        sticky=sticky,
-        verdict=verdict,
-        margin=margin,
-        validated=VALIDATED,
-        notes=(
-            "threshold θ = 10 is a convention (pull-off ≈ 4 % of the smooth value)",
-            "E* in θ (authors using K = 4E*/3 get a θ 4/3 larger)",
-        ),  # fmt: skip
-        values=values,
-    )
+        why = "needs h_rms and h''rms (summit statistics)"
+        return DESCRIPTOR.result(threshold=threshold, no_verdict_reason=why)
+    theta = fuller_tabor_parameter(summits.height_std, summits.radius,
+                                   inputs.contact_modulus, inputs.work_of_adhesion)  # fmt: skip
+    values = {"summit_height_std": summits.height_std, "summit_radius": summits.radius,
+              "summit_density": summits.density, "bandwidth": summits.bandwidth}  # fmt: skip
+    return DESCRIPTOR.result(theta, threshold=threshold, values=values)

@@ -24,13 +24,27 @@ from __future__ import annotations
 
 import math
 
-from .result import CriterionResult, decide, no_verdict
+from .result import Criterion, CriterionResult
 
 KEY = "persson_tosatti"
 VALIDATED = (
     "peel/pull-off experiments of soft elastomers on rough hard surfaces (Dalvi et al., "
     "PNAS 116, 25484 (2019)); not against simulations of hard solids with short-range "
     "adhesion"
+)
+DESCRIPTOR = Criterion(
+    key=KEY,
+    name="Persson & Tosatti",
+    reference="B. N. J. Persson, E. Tosatti, J. Chem. Phys. 115, 5597 (2001)",
+    formula="Π = (E*/4)∫d²q|q|C(q) / (w (1 + h'rms²/2)) < 1",
+    parameter_symbol="Π",
+    threshold=1.0,
+    sticky_below=True,
+    validated=VALIDATED,
+    notes=(
+        "full conformal contact assumed; the interaction range does not enter",
+        "true area A*/A0 = 1 + h'rms²/2 (small slopes)",
+    ),
 )
 
 
@@ -41,36 +55,14 @@ def elastic_energy_full_contact(contact_modulus, half_derivative_variance):
 
 def evaluate(inputs) -> CriterionResult:
     """Π = U_el/(A0 w (1 + h'rms²/2)) < 1 (needs the half-derivative variance M_1)."""
-    values = {}
     if math.isnan(inputs.half_derivative_variance):
-        P = math.nan
-        sticky, verdict, margin = no_verdict("needs the power spectrum (M_1 = ∫d²q |q| C)")
-    else:
-        u = elastic_energy_full_contact(inputs.contact_modulus, inputs.half_derivative_variance)
-        area = 1.0 + inputs.rms_slope**2 / 2.0
-        P = u / (inputs.work_of_adhesion * area)
-        sticky, verdict, margin = decide(P, 1.0, True)
-        values = {
-            "elastic_energy_per_area": u,
-            "true_area_ratio": area,
-            "effective_work_of_adhesion": inputs.work_of_adhesion * area - u,
-        }
-    return CriterionResult(
-        key=KEY,
-        name="Persson & Tosatti",
-        reference="B. N. J. Persson, E. Tosatti, J. Chem. Phys. 115, 5597 (2001)",
-        formula="Π = (E*/4)∫d²q|q|C(q) / (w (1 + h'rms²/2)) < 1",
-        parameter_symbol="Π",
-        parameter=P,
-        threshold=1.0,
-        sticky_below=True,
-        sticky=sticky,
-        verdict=verdict,
-        margin=margin,
-        validated=VALIDATED,
-        notes=(
-            "full conformal contact assumed; the interaction range does not enter",
-            "true area A*/A0 = 1 + h'rms²/2 (small slopes)",
-        ),  # fmt: skip
-        values=values,
-    )
+        why = "needs the power spectrum (M_1 = ∫d²q |q| C)"
+        return DESCRIPTOR.result(no_verdict_reason=why)
+    u = elastic_energy_full_contact(inputs.contact_modulus, inputs.half_derivative_variance)
+    area = 1.0 + inputs.rms_slope**2 / 2.0
+    values = {
+        "elastic_energy_per_area": u,
+        "true_area_ratio": area,
+        "effective_work_of_adhesion": inputs.work_of_adhesion * area - u,
+    }
+    return DESCRIPTOR.result(u / (inputs.work_of_adhesion * area), values=values)

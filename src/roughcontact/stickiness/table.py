@@ -92,6 +92,10 @@ def format_table(table: dict) -> str:
     lines.append("Validated against simulation or experiment:")
     for c in table["criteria"]:
         lines.append(f"  {c['name']}: {c['validated']}")
+    noted = [c for c in table["criteria"] if c.get("notes")]
+    if noted:
+        lines.append("Model choices and caveats:")
+        lines += [f"  {c['name']}: " + "; ".join(c["notes"]) for c in noted]
     return "\n".join(lines)
 
 

@@ -210,7 +210,7 @@ def stickiness_criteria(ds, *, confidence=0.95) -> dict:
     ``decided``, and ``best_threshold`` (the threshold on the same parameter that agrees
     with most decided sets, and how many it gets right).
     """
-    from ..stickiness import CRITERIA
+    from ..stickiness import CRITERIA, DESCRIPTORS
 
     rows = [r for r in aggregate_seeds(ds, confidence=confidence) if r["analysed"]]
     measured = [r["verdict"] for r in rows]
@@ -221,20 +221,19 @@ def stickiness_criteria(ds, *, confidence=0.95) -> dict:
             {k: f(inputs) for k, f in CRITERIA.items()} if not isinstance(inputs, str) else {}
         )
     out = {"parameter_sets": len(rows), "criteria": {}, "sets": []}
-    for key in CRITERIA:
+    for key, d in DESCRIPTORS.items():
         res = [x.get(key) for x in results]
-        first = next((x for x in res if x is not None), None)
         predicted = [_task_verdict(None if x is None else x.sticky) for x in res]
         params = [math.nan if x is None else x.parameter for x in res]
         block = _confusion(measured, predicted)
         block.update(
-            name=first.name if first else key,
-            reference=first.reference if first else "",
-            parameter_symbol=first.parameter_symbol if first else "",
-            threshold=first.threshold if first else math.nan,
-            sticky_below=first.sticky_below if first else True,
-            validated=first.validated if first else "",
-            best_threshold=_best_threshold(params, measured, first.sticky_below if first else True),
+            name=d.name,
+            reference=d.reference,
+            parameter_symbol=d.parameter_symbol,
+            threshold=d.threshold,
+            sticky_below=d.sticky_below,
+            validated=d.validated,
+            best_threshold=_best_threshold(params, measured, d.sticky_below),
             no_verdict=sum(x is None or x.sticky is None for x in res),
         )
         out["criteria"][key] = block
