@@ -197,3 +197,49 @@ def test_analyze_cli_prints_the_hysteresis_and_saves_its_figure(tmp_path):
     hy = hysteresis(ds)
     assert out["dissipated_energy"] == pytest.approx(hy.dissipated_energy)
     assert out["jumps"] == hy.jumps and png.stat().st_size > 1000
+
+
+def test_si_conversion_by_hand():
+    """W = 0.5 E* a0 per A0 with a0 = 0.3 nm, E* = 1 GPa, A0 = 64² a0², 4 jumps:
+    0.5 × 0.3e-9 m × 1e9 Pa = 0.15 J/m²; A0 = 4096 × (0.3e-9)² = 3.6864e-16 m²;
+    over A0 0.15 × 3.6864e-16 = 5.5296e-17 J, per jump 1.3824e-17 J."""
+    from roughcontact.analysis.hysteresis import Hysteresis, hysteresis_in_si
+
+    hy = Hysteresis(0.5, 0.01, 0.7, -0.2, 4, 2, 2, 0.125, True)
+    si = hysteresis_in_si(hy, length_scale=0.3e-9, pressure_scale=1e9, nominal_area=64 * 64)
+    assert si["dissipated_energy_per_area"] == pytest.approx(0.15, rel=1e-12)
+    assert si["energy_uncertainty_per_area"] == pytest.approx(0.003, rel=1e-12)
+    assert si["nominal_area"] == pytest.approx(3.6864e-16, rel=1e-12)
+    assert si["dissipated_energy"] == pytest.approx(5.5296e-17, rel=1e-12)
+    assert si["energy_per_jump"] == pytest.approx(1.3824e-17, rel=1e-12)
+    from roughcontact.errors import ParameterError
+
+    with pytest.raises(ParameterError, match="pressure_scale"):
+        hysteresis_in_si(hy, length_scale=1e-9, pressure_scale=-1, nominal_area=1)
+
+
+def test_analyze_cli_gives_the_cycle_in_si_when_told_the_scales(tmp_path):
+    import json
+
+    from click.testing import CliRunner
+
+    from roughcontact.cli.main import main
+
+    ds, n = _simulated_sphere(2.0)
+    f = tmp_path / "sphere.nc"
+    ds.to_netcdf(f, engine="h5netcdf")
+    base = ["analyze", str(f), "--no-hard-wall-reference", "--json"]
+    r = CliRunner().invoke(main, [*base, "--length-scale", "2 nm", "--pressure-scale", "10 MPa"])
+    assert r.exit_code == 0, r.output
+    out = json.loads(r.stdout)
+    W = hysteresis(ds).dissipated_energy  # E* a0 per A0 (E* = 1, a0 = 1)
+    # by hand: J/m^2 = W × 2e-9 m × 1e7 Pa; A0 = 128² (2 nm)² = 6.5536e-14 m²
+    assert out["dissipated_energy_si"] == pytest.approx(W * 2e-2, rel=1e-12)
+    assert out["nominal_area_si"] == pytest.approx(6.5536e-14, rel=1e-12)
+    assert out["dissipated_energy_joules"] == pytest.approx(W * 2e-2 * 6.5536e-14, rel=1e-12)
+    assert "2e-09 m (given)" in out["si_scales"]
+    # without the scales: no SI numbers, and the text says why
+    r = CliRunner().invoke(main, base[:-1])
+    assert r.exit_code == 0 and "give --pressure-scale and --length-scale" in r.output
+    r = CliRunner().invoke(main, [*base, "--pressure-scale", "-3 Pa", "--length-scale", "1 nm"])
+    assert r.exit_code == 2 and "--pressure-scale" in r.output

@@ -53,6 +53,7 @@ __all__ = [
     "Hysteresis",
     "hysteresis",
     "hysteresis_from_steps",
+    "hysteresis_in_si",
     "jkr_cycle_dissipation",
 ]
 
@@ -223,3 +224,38 @@ def hysteresis(ds, *, length_scale=None, pressure_scale=None) -> Hysteresis:
         length_scale=length_scale,
         pressure_scale=pressure_scale,
     )
+
+
+def hysteresis_in_si(h: Hysteresis, *, length_scale, pressure_scale, nominal_area) -> dict:
+    """The cycle's energies of ``h`` in SI: per area [J/m²] and over the nominal area [J].
+
+    Parameters
+    ----------
+    h : Hysteresis
+        In the path's units (W per A0: pressure × length).
+    length_scale : float
+        Metres per the path's length unit (a lattice path: a0 in m; a path of an
+        instrument file: 1).
+    pressure_scale : float
+        Pascals per the path's pressure unit (a lattice path: E* in Pa).
+    nominal_area : float
+        A0 in the path's length unit squared.
+
+    Returns
+    -------
+    dict
+        ``dissipated_energy_per_area`` and ``energy_uncertainty_per_area`` [J/m²] (W, its
+        jump bound), ``nominal_area`` [m²], ``dissipated_energy`` [J] (W A0) and
+        ``energy_per_jump`` [J] (NaN without jumps or without a retraction).
+    """
+    ls = positive("length_scale", length_scale)
+    ps = positive("pressure_scale", pressure_scale)
+    area = positive("nominal_area", nominal_area) * ls**2
+    per_area = h.dissipated_energy * ls * ps  # pressure × length -> J/m^2
+    return {
+        "dissipated_energy_per_area": per_area,
+        "energy_uncertainty_per_area": h.energy_uncertainty * ls * ps,
+        "nominal_area": area,
+        "dissipated_energy": per_area * area,
+        "energy_per_jump": per_area * area / h.jumps if h.jumps else math.nan,
+    }

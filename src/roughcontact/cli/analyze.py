@@ -54,6 +54,19 @@ from .._validate import FIT_MAX_AREA, TARGET_AREA, click_check, json_safe
     default=None,
     help="Also save the load-approach cycle with its dissipated energy (PNG/PDF by suffix).",
 )
+@click.option(
+    "--length-scale",
+    default=None,
+    help="Metres per the path's length unit, e.g. '0.3 nm' (a lattice path of a0 = 0.3 nm); "
+    "default 1 m for a path computed from an instrument file, else none. With "
+    "--pressure-scale: the dissipated energy in J/m^2 and J.",
+)
+@click.option(
+    "--pressure-scale",
+    default=None,
+    help="Pascals per the path's pressure unit, e.g. '10 MPa' (a lattice path, E* = 1, of "
+    "E* = 10 MPa) or '1 Pa' (--modulus was given in Pa).",
+)
 def analyze(
     path_file,
     target_area,
@@ -63,6 +76,8 @@ def analyze(
     hard_wall_reference,
     as_json,
     hysteresis_figure=None,
+    length_scale=None,
+    pressure_scale=None,
 ):
     """Measure κ, κ_rep, κ_att, A_rep/A_att, d_rep and pull-off on a path, next to theory.
 
@@ -76,7 +91,11 @@ def analyze(
     kappa_rep_hard_wall(_corrected) and band_width: the hard wall on the same surface.
     dissipated_energy (-∮N dd per A0, pressure × length in the path's units; NaN without
     a retraction), dissipated_energy_bound (the trapezoid's bound over the jump steps),
-    jumps and energy_per_jump: the whole approach–retraction cycle's hysteresis.
+    jumps and energy_per_jump: the whole approach–retraction cycle's hysteresis. With
+    --pressure-scale (and --length-scale, or a path of an instrument file, in metres) also
+    in SI: dissipated_energy_si and dissipated_energy_bound_si [J/m^2],
+    dissipated_energy_joules [J over the path's nominal area A0, nominal_area_si m^2] and
+    energy_per_jump_joules [J]; si_scales says where the scales come from.
     Exit code 3 if the steps around the target area did not converge (unless
     --allow-unconverged), 2 on bad input.
     """
@@ -96,6 +115,7 @@ def analyze(
         click.echo(f"roughcontact: error: {err}", err=True)
         sys.exit(3)
     summary = result.to_dict()
+    summary.update(_si_energies(ds, length_scale, pressure_scale))
     if hysteresis_figure is not None:
         from ..plot.hysteresis import hysteresis_figure as _figure
 
@@ -109,8 +129,51 @@ def analyze(
             "units: areas per A0, loads N/A0 in units of E*, lengths (d_rep, band_width, "
             "offset) in the path's length unit; kappa = h'rms E* A_rep/N at the target area, "
             "kappa_fit = the slope of A_rep(N); dissipated_energy = -∮N dd per A0 over the "
-            "whole cycle (load unit × length unit)"
+            "whole cycle (load unit × length unit); *_si in J/m^2, *_joules in J over A0"
         )
         for k, v in summary.items():
             if k != "warnings":
                 click.echo(f"{k:>34}: {v}")
+
+
+def _si_energies(ds, length_scale, pressure_scale) -> dict:
+    """The cycle's dissipated energy in SI (J/m², J over A0), or why it is not given."""
+    from .._validate import positive
+    from ..analysis.hysteresis import hysteresis, hysteresis_in_si
+    from ..criterion import parse_quantity
+
+    keys = ("dissipated_energy_si", "dissipated_energy_bound_si", "dissipated_energy_joules",
+            "energy_per_jump_joules", "nominal_area_si")  # fmt: skip
+    source = "given"
+    if length_scale is not None:
+        ls = positive("--length-scale", parse_quantity(length_scale, "length", "--length-scale"))
+    elif _from_instrument_file(ds):
+        ls, source = 1.0, "the path's lengths are metres (computed from an instrument file)"
+    else:
+        ls = None
+    if pressure_scale is None or ls is None:
+        why = "not in SI: give --pressure-scale" + ("" if ls else " and --length-scale")
+        return {**dict.fromkeys(keys), "si_scales": why + " (the path stores no units)"}
+    ps = positive(
+        "--pressure-scale", parse_quantity(pressure_scale, "pressure", "--pressure-scale")
+    )
+    si = hysteresis_in_si(hysteresis(ds), length_scale=ls, pressure_scale=ps,
+                          nominal_area=float(ds.attrs["nominal_area"]))  # fmt: skip
+    return {
+        "dissipated_energy_si": si["dissipated_energy_per_area"],
+        "dissipated_energy_bound_si": si["energy_uncertainty_per_area"],
+        "dissipated_energy_joules": si["dissipated_energy"],
+        "energy_per_jump_joules": si["energy_per_jump"],
+        "nominal_area_si": si["nominal_area"],
+        "si_scales": f"length unit = {ls:.6g} m ({source}), pressure unit = {ps:.6g} Pa (given)",
+    }
+
+
+def _from_instrument_file(ds) -> bool:
+    """A path of ``roughcontact path`` on an instrument file: its lengths are metres."""
+    name = ds.attrs.get("surface_file")
+    if not name:
+        return False
+    from ..topography import file_kind
+
+    return file_kind(str(name)) == "instrument"  # a file gone since: "text", no claim
