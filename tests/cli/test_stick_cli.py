@@ -6,6 +6,7 @@ printed statistics, and the files the report must (and must only) contain.
 """
 
 import json
+import math
 import shutil
 from pathlib import Path
 
@@ -294,3 +295,31 @@ def test_counter_surface_and_fill_missing_options(scan, tmp_path):
     assert "31.3% of the points (5121 of 16384)" in err and "--fill-missing" in err
     r = _run([holed, *NPY, *SILICON, "--fill-missing"])
     assert r.exit_code == 0 and "31.256% of the scan" in r.output
+
+
+def test_simulate_reports_the_hysteresis_in_si(fine_scan):
+    """Each seed's cycle from its lattice path (E* a0 per A0) times E* a0 in SI, by hand:
+    E* = 100 GPa, a0 = 0.3 nm -> 30 J/m^2 per unit; the scan is 128^2 pixels of 0.6 nm."""
+    from roughcontact.analysis.hysteresis import hysteresis
+
+    py = rc.stick(fine_scan, pixel_size=0.6e-9, height_unit="nm", periodic=True,
+                  detrend="height", modulus="100 GPa", work_of_adhesion=1.5, simulate=True,
+                  simulate_size=64, simulate_seeds=1)  # fmt: skip
+    hy = py.hysteresis
+    one = hysteresis(py.simulation.runs[0].path)
+    W = one.dissipated_energy  # here ~0: no jumps at this weak DMT-like adhesion
+    assert math.isfinite(W) and hy["seeds"][0]["dissipated_energy"] == W
+    assert hy["jumps_mean"] == one.jumps
+    assert hy["dissipated_energy_si"] == pytest.approx(W * 1e11 * 0.3e-9, rel=1e-12)
+    assert hy["scan_area"] == pytest.approx((128 * 0.6e-9) ** 2, rel=1e-12)
+    assert hy["dissipated_energy_scan"] == pytest.approx(W * 30.0 * (128 * 0.6e-9) ** 2, rel=1e-12)
+    assert hy["seeds"][0]["patch_area"] == pytest.approx((64 * 0.3e-9) ** 2, rel=1e-12)
+    d = py.to_dict()
+    assert d["hysteresis"]["dissipated_energy_si"] == pytest.approx(hy["dissipated_energy_si"])
+    assert d["hysteresis"]["dissipated_energy_si_std"] is None  # one seed: no spread
+    assert d["units"]["hysteresis.dissipated_energy_si"].startswith("J/m^2")
+    from roughcontact.topography.report import summary
+
+    text = "\n".join(summary(py))
+    assert "energy dissipated per approach–retraction cycle" in text and "J/m^2" in text
+    assert "over the scanned area" in text and "extrapolated" in text

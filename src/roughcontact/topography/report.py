@@ -32,6 +32,7 @@ __all__ = [
     "figure_psd",
     "figure_scan",
     "figure_slope",
+    "hysteresis_summary",
     "simulation_summary",
     "summary",
     "write_report",
@@ -85,6 +86,8 @@ def summary(result: StickResult) -> list[str]:
     lines += [f"note: {n}" for n in result.notes if n not in first]
     if result.simulation is not None:
         lines += simulation_summary(result.simulation)
+    if result.hysteresis is not None:
+        lines += hysteresis_summary(result.hysteresis)
     if result.criteria is not None:
         from ..stickiness import format_table
 
@@ -119,6 +122,26 @@ def simulation_summary(sim) -> list[str]:
         f"per seed kappa (kappa_rep, kappa_att) at A_rep = 1 %: {seeds}; pull-off pressure "
         + (f"{pull:.3g} Pa" if np.isfinite(pull) else "not measured"),
     ] + [f"note: {n}" for n in sim.notes]
+
+
+def hysteresis_summary(hy) -> list[str]:
+    """The simulation's approach–retraction cycles in SI
+    (:func:`roughcontact.topography.hysteresis.simulation_hysteresis`)."""
+    w, sd = hy["dissipated_energy_si"], hy["dissipated_energy_si_std"]
+    if not np.isfinite(w):
+        return ["hysteresis: not measured (no seed's cycle has a retraction)"]
+    spread = f" ± {sd:.3g}" if np.isfinite(sd) else " (1 seed: no spread)"
+    scan = hy["dissipated_energy_scan"]
+    per_seed = "; ".join(
+        f"seed {s['seed']}: {s['dissipated_energy_si']:.3g} J/m^2, {s['jumps']} jumps"
+        for s in hy["seeds"]
+    )
+    return [
+        f"hysteresis: energy dissipated per approach–retraction cycle {w:.3g}{spread} J/m^2 "
+        f"(mean ± sd over seeds), {hy['jumps_mean']:.3g} jumps per cycle"
+        + (f"; over the scanned area {scan:.3g} J" if np.isfinite(scan) else ""),
+        f"hysteresis per seed: {per_seed}",
+    ] + [f"note: {n}" for n in hy["notes"]]
 
 
 # --------------------------------------------------------------------------- figures

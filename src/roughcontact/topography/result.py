@@ -90,6 +90,15 @@ UNITS = {
     "criterion_atomic.*": "SI: Pa, J/m^2, m, 1/m; see roughcontact criterion --json",
     "criteria.*": "SI: Pa, J/m^2, m, 1/m (inputs); each criterion's parameter is dimensionless;"
     " scale in m",
+    "hysteresis.dissipated_energy_si": "J/m^2 (mean over seeds; _std: sample sd)",
+    "hysteresis.dissipated_energy_scan": "J (over scan_area, extrapolated)",
+    "hysteresis.scan_area": "m^2",
+    "hysteresis.jumps_mean": "jumps per cycle",
+    "hysteresis.seeds.dissipated_energy": "E* a0 per A0 (the simulation's lattice units)",
+    "hysteresis.seeds.dissipated_energy_si": "J/m^2",
+    "hysteresis.seeds.energy_uncertainty_si": "J/m^2",
+    "hysteresis.seeds.energy_per_jump_joules": "J (over patch_area)",
+    "hysteresis.seeds.patch_area": "m^2 (the simulated patch, size^2 a0^2)",
     **SIMULATION_UNITS,
 }
 
@@ -124,6 +133,10 @@ class StickResult:
     criteria : dict or None
         The field's stickiness criteria side by side at the measured scale
         (:func:`roughcontact.stickiness.criteria_table`, with ``"scale"`` [m]).
+    hysteresis : dict or None
+        The simulation's approach–retraction cycles in SI (J/m², J over the scan):
+        :func:`roughcontact.topography.hysteresis.simulation_hysteresis`; None without
+        a simulation.
     """
 
     topography: object = field(repr=False)
@@ -135,6 +148,7 @@ class StickResult:
     good_range: object = None
     kappa_rep_check: dict | None = None
     criteria: dict | None = None
+    hysteresis: dict | None = None
 
     @property
     def sticky(self) -> bool | None:
@@ -261,6 +275,7 @@ class StickResult:
             "notes": list(self.notes),
             "simulation": None if self.simulation is None else self.simulation.to_dict(),
             "criteria": self.criteria,
+            "hysteresis": self.hysteresis,
             "units": dict(UNITS),
         }
         return json_safe(d)

@@ -247,8 +247,18 @@ def stick(
     check = kappa_rep_check(
         v, stats, common, simulation, lambda k: stickiness_verdict(stats, kappa_rep=k, **common)
     )
+    hysteresis = None
+    if simulation is not None:
+        from .hysteresis import simulation_hysteresis
+
+        hysteresis = simulation_hysteresis(
+            simulation, atomic_spacing=m.atomic_spacing, contact_modulus=m.contact_modulus,
+            scan_area=float(np.prod(topo.pixel_size) * np.prod(topo.shape))
+            if len(topo.shape) == 2 else None,
+        )  # fmt: skip
     return StickResult(
         criteria=_criteria(stats, m, inputs["youngs_modulus"], simulation),
+        hysteresis=hysteresis,
         topography=topo,
         statistics=stats,
         verdict=v,
