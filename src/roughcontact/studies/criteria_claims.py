@@ -17,7 +17,8 @@ New:
   criterion's *form* orders the sets correctly, whatever its constant);
 * :func:`adhesion_hysteresis` -- the energy an approach–retraction cycle dissipates
   (:mod:`roughcontact.analysis.hysteresis`, per A0 in units of E* a0) and the number of
-  jumps, per task from the collected steps, summarised by ℓa/a0.
+  jumps, per task from the collected steps, summarised by ℓa/a0 and per parameter set
+  (mean ± sd over seeds).
 """
 
 from __future__ import annotations
@@ -255,13 +256,17 @@ def adhesion_hysteresis(ds, *, confidence=0.95) -> dict:
     Per task (the collected steps in order): ``W = -∮ N dd`` per A0 [E* a0], its bound
     from the jump steps, and the jumps in and out; per ℓa the spread over tasks
     (median, 16th-84th percentiles) of W, of the jumps and of W per jump, and the count
-    of tasks whose cycle is not closed.
+    of tasks whose cycle is not closed; ``by_parameter_set``: per parameter set (tasks
+    that differ only in the seed) the mean and sample standard deviation over its seeds
+    of the same (``{"mean", "sd", "seeds"}``); ``task_columns``: whether the collection
+    has the per-task variables of ``study collect`` (else they come from the steps alone).
     """
     from ..analysis.hysteresis import hysteresis_from_steps
     from ._claim_data import _levels, _spread
 
     if "offset" not in ds.variables or "branch" not in ds.variables:
-        return {"tasks": 0, "by_adhesion_length": []}
+        return {"tasks": 0, "by_adhesion_length": [], "by_parameter_set": [],
+                "task_columns": False}  # fmt: skip
     off = np.asarray(ds["offset"].values, dtype=float)
     load = np.asarray(ds["load"].values, dtype=float)
     branch = np.asarray(ds["branch"].values).astype(str)
@@ -276,7 +281,13 @@ def adhesion_hysteresis(ds, *, confidence=0.95) -> dict:
             None if conv is None else conv[i],
         )  # fmt: skip
     la = np.asarray(ds["adhesion_length"].values, dtype=float)
-    out = {"tasks": len(per), "by_adhesion_length": []}
+    out = {
+        "tasks": len(per),
+        "by_adhesion_length": [],
+        "by_parameter_set": _by_parameter_set(ds, per),
+        # new collections carry them per task (``study collect``); older ones only the steps
+        "task_columns": all(k in ds.variables for k in _TASK_COLUMNS),
+    }
     for lv in _levels(ds, "adhesion_length", np.asarray(tasks, dtype=int)):
         sel = [per[i] for i in tasks if la[i] == lv]
         out["by_adhesion_length"].append(
@@ -291,6 +302,46 @@ def adhesion_hysteresis(ds, *, confidence=0.95) -> dict:
             }
         )
     return out
+
+
+#: The per-task hysteresis variables ``study collect`` writes (PathAnalysis fields).
+_TASK_COLUMNS = ("dissipated_energy", "dissipated_energy_bound", "jumps", "energy_per_jump")
+
+
+def _mean_sd(values) -> dict:
+    """Mean and sample standard deviation over seeds of the finite values (NaN sd: one)."""
+    v = np.asarray(values, dtype=float)
+    v = v[np.isfinite(v)]
+    return {
+        "mean": float(v.mean()) if v.size else math.nan,
+        "sd": float(v.std(ddof=1)) if v.size > 1 else math.nan,
+        "seeds": int(v.size),
+    }
+
+
+def _by_parameter_set(ds, per) -> list[dict]:
+    """Per parameter set (tasks differing only in the seed): mean ± sd over its seeds of W,
+    its bound, the jumps and W per jump (units of :func:`adhesion_hysteresis`)."""
+    from .aggregate import _parameter_sets
+
+    keys, groups = _parameter_sets(ds)
+    rows = []
+    for label, tasks in groups.items():
+        sel = [per[i] for i in tasks if i in per]
+        if not sel:
+            continue
+        rows.append(
+            {
+                **dict(zip(keys, label, strict=True)),
+                "tasks": len(sel),
+                "dissipated_energy": _mean_sd([h.dissipated_energy for h in sel]),
+                "energy_uncertainty": _mean_sd([h.energy_uncertainty for h in sel]),
+                "jumps": _mean_sd([h.jumps for h in sel]),
+                "energy_per_jump": _mean_sd([h.energy_per_jump for h in sel]),
+                "not_closed": sum(not h.closed for h in sel),
+            }
+        )
+    return rows
 
 
 # ------------------------------------------------------------------------ the report
@@ -363,4 +414,42 @@ def report_lines(c) -> list[str]:
                 f"| {_n(r['adhesion_length'])} | " + " | ".join(cols) + f" | {r['not_closed']} |"
             )
         L.append("")
+        L += _set_lines(hy)
     return L
+
+
+def _ms(d) -> str:
+    """``mean ± sd`` over seeds (``mean`` alone with one seed)."""
+    if not d["seeds"]:
+        return "—"
+    return _n(d["mean"]) + ("" if d["seeds"] < 2 else f" ± {_n(d['sd'], 2)}")
+
+
+def _set_lines(hy) -> list[str]:
+    """§10's table per parameter set (mean ± sd over seeds)."""
+    sets = hy.get("by_parameter_set") or []
+    if not sets:
+        return []
+    source = (
+        "the task variables written by `study collect`"
+        if hy.get("task_columns")
+        else "the collected steps: this data predates the per-task hysteresis variables "
+        "(dissipated_energy, dissipated_energy_bound, jumps, energy_per_jump) that "
+        "`study collect` now writes for new runs; both come from the same function"
+    )
+    L = [
+        f"Per parameter set ({len(sets)}; mean ± sample standard deviation over its seeds, "
+        f"computed from {source}). W in units of E* a0 per A0; |W| of order 1e-12 is the "
+        "trapezoid's round-off of a cycle without jumps (no dissipation):",
+        "",
+        "| H | h′rms | λs/a0 | ℓa/a0 | seeds | W/(E* a0) | jumps | W per jump | not closed |",
+        "|---|---|---|---|---|---|---|---|---|",
+    ]
+    for r in sets:
+        L.append(
+            f"| {_n(r.get('hurst'))} | {_n(r.get('rms_slope'))} | {_n(r.get('short_cutoff'))} "
+            f"| {_n(r.get('adhesion_length'))} | {r['dissipated_energy']['seeds']} | "
+            f"{_ms(r['dissipated_energy'])} | {_ms(r['jumps'])} | "
+            f"{_ms(r['energy_per_jump'])} | {r['not_closed']} |"
+        )
+    return [*L, ""]
