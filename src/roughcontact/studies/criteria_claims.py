@@ -387,9 +387,15 @@ def report_lines(c) -> list[str]:
         L += [
             "",
             "Dahlquist's rule needs SI (no scale in lattice units) and Müser's parameter "
-            "classifies the regime without a stickiness threshold: neither gives a verdict "
-            "here. The Fuller–Tabor threshold θ = 10 is a convention. No bearing-area "
-            "criterion (Ciavarella's BAM, Violano et al.) is evaluated: see the docs.",
+            "(its definition unverified against Müser's paper) classifies the regime without "
+            "a stickiness threshold: neither gives a verdict here. The Fuller–Tabor threshold "
+            "θ = 10 is a convention. No bearing-area criterion (Ciavarella's BAM, Violano et "
+            "al.) is evaluated: its equations could not be checked against the papers (see "
+            "the docs).",
+            "",
+            "Where each criterion had been validated before this table:",
+            "",
+            *[f"- {b['name']}: {b['validated']}." for b in sc["criteria"].values()],
             "",
         ]
     hy = c.get("adhesion_hysteresis")
