@@ -6,6 +6,12 @@ from .result import NO_VERDICT
 
 __all__ = ["agreement", "criteria_table", "criteria_table_for_heights", "format_table"]
 
+#: Said below every table: a criterion of the field that is deliberately missing.
+NOT_EVALUATED = (
+    "the bearing-area (BAM) criteria of Ciavarella (2018) and Violano et al. (2019), whose "
+    "equations could not be checked against the papers (docs: Stickiness criteria)"
+)
+
 
 def agreement(results, simulated: str | None = None) -> dict:
     """Which criteria say sticky, which not, which give no verdict; do they disagree?
@@ -92,6 +98,7 @@ def format_table(table: dict) -> str:
     lines.append("Validated against simulation or experiment:")
     for c in table["criteria"]:
         lines.append(f"  {c['name']}: {c['validated']}")
+    lines.append(f"Not evaluated: {NOT_EVALUATED}.")
     noted = [c for c in table["criteria"] if c.get("notes")]
     if noted:
         lines.append("Model choices and caveats:")
