@@ -290,18 +290,20 @@ def adhesion_hysteresis(ds, *, confidence=0.95) -> dict:
     }
     for lv in _levels(ds, "adhesion_length", np.asarray(tasks, dtype=int)):
         sel = [per[i] for i in tasks if la[i] == lv]
-        out["by_adhesion_length"].append(
-            {
-                "adhesion_length": lv,
-                "tasks": len(sel),
-                "dissipated_energy": _spread([h.dissipated_energy for h in sel]),
-                "energy_uncertainty": _spread([h.energy_uncertainty for h in sel]),
-                "jumps": _spread([h.jumps for h in sel]),
-                "energy_per_jump": _spread([h.energy_per_jump for h in sel]),
-                "not_closed": sum(not h.closed for h in sel),
-            }
-        )
+        out["by_adhesion_length"].append({"adhesion_length": lv, **_summary(sel, _spread)})
     return out
+
+
+def _summary(sel, statistic) -> dict:
+    """``statistic`` (a spread over tasks, or mean ± sd over seeds) of each cycle quantity."""
+    return {
+        "tasks": len(sel),
+        **{
+            key: statistic([getattr(h, key) for h in sel])
+            for key in ("dissipated_energy", "energy_uncertainty", "jumps", "energy_per_jump")
+        },
+        "not_closed": sum(not h.closed for h in sel),
+    }
 
 
 #: The per-task hysteresis variables ``study collect`` writes (PathAnalysis fields).
@@ -330,17 +332,7 @@ def _by_parameter_set(ds, per) -> list[dict]:
         sel = [per[i] for i in tasks if i in per]
         if not sel:
             continue
-        rows.append(
-            {
-                **dict(zip(keys, label, strict=True)),
-                "tasks": len(sel),
-                "dissipated_energy": _mean_sd([h.dissipated_energy for h in sel]),
-                "energy_uncertainty": _mean_sd([h.energy_uncertainty for h in sel]),
-                "jumps": _mean_sd([h.jumps for h in sel]),
-                "energy_per_jump": _mean_sd([h.energy_per_jump for h in sel]),
-                "not_closed": sum(not h.closed for h in sel),
-            }
-        )
+        rows.append({**dict(zip(keys, label, strict=True)), **_summary(sel, _mean_sd)})
     return rows
 
 
