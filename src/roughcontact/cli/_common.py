@@ -15,7 +15,7 @@ import click
 
 from .._signals import EXIT_TERMINATED, exit_code
 from .._validate import MAX_ITER, PIXEL_SIZE, TOL, ParameterError, click_check, json_safe
-from ..interactions.registry import make_law
+from ..interactions.registry import LAW_PARAMETERS, make_law
 from ..interactions.registry import names as interaction_names
 
 EXIT_BAD_INPUT = 2
@@ -48,50 +48,40 @@ def _json(obj) -> str:
     return json.dumps(json_safe(obj), allow_nan=False)
 
 
+#: the commands' argument of a law parameter's option, where it is not the parameter's name
+_LAW_OPTION_DEST = {"work_of_adhesion": "work", "range": "range_"}
+
+
+def _law_options():
+    """``--interaction`` and one option per law parameter of the registry's one list (w
+    first: the help lists it before its alternative, ℓa)."""
+    given = sorted(
+        (p for p in LAW_PARAMETERS if p.given), key=lambda p: p.name != "work_of_adhesion"
+    )
+    yield click.option(
+        "--interaction",
+        type=click.Choice(INTERACTIONS),
+        default="hardwall",
+        show_default=True,
+        help="Surface interaction law.",
+    )
+    for p in given:
+        yield click.option(
+            "--" + p.name.replace("_", "-"),
+            _LAW_OPTION_DEST.get(p.name, p.name),
+            type=float,
+            default=None,
+            help=p.option_help,
+        )
+
+
 def _interaction_options(f):
-    opts = [
-        click.option(
-            "--interaction",
-            type=click.Choice(INTERACTIONS),
-            default="hardwall",
-            show_default=True,
-            help="Surface interaction law.",
-        ),
-        click.option(
-            "--work-of-adhesion",
-            "work",
-            type=float,
-            default=None,
-            help="w (energy per area, units of E* x length).",
-        ),
-        click.option(
-            "--adhesion-length",
-            "adhesion_length",
-            type=float,
-            default=None,
-            help="ℓa = w/E* (length, > 0): w = ℓa x --modulus; instead of --work-of-adhesion.",
-        ),
-        click.option(
-            "--range",
-            "range_",
-            type=float,
-            default=None,
-            help="Δr (lj93smooth), ρ (exponential), cohesive width (dugdale).",
-        ),
-        click.option(
-            "--stiffness",
-            type=float,
-            default=None,
-            help="lj93smooth site stiffness per area k = V''(a0) (default E*/(2 a0)).",
-        ),
-        click.option(
-            "--core-stiffness",
-            type=float,
-            default=None,
-            help="exponential: soft repulsive core k_c for g < 0 (default: hard wall).",
-        ),
-    ]
-    for o in reversed(opts):
+    return _stacked(f, _law_options())
+
+
+def _stacked(f, options):
+    """``f`` under the click options, the first one listed first in ``--help``."""
+    for o in reversed(list(options)):
         f = o(f)
     return f
 
