@@ -67,6 +67,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._validate import ParameterError, positive
+from .._validate import nonnegative as _alpha
 from .westergaard import westergaard_full_contact_pressure
 
 __all__ = [
@@ -117,16 +118,6 @@ def johnson_parameter(*, amplitude, wavelength, contact_modulus, work_of_adhesio
     E = positive("contact_modulus", contact_modulus)
     w = positive("work_of_adhesion", work_of_adhesion)
     return math.sqrt(2.0 * lam * w / (math.pi**2 * E * D * D))
-
-
-def _alpha(name, value) -> float:
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise ParameterError(f"{name} must be a number >= 0, got {value!r}") from None
-    if not (v >= 0) or math.isinf(v):
-        raise ParameterError(f"{name} must be finite and >= 0, got {value!r}")
-    return v
 
 
 def _contact_half_width(name, value, lam):
