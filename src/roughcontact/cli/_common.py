@@ -15,7 +15,7 @@ import click
 
 from .._signals import EXIT_TERMINATED, exit_code
 from .._validate import MAX_ITER, PIXEL_SIZE, TOL, ParameterError, click_check, json_safe
-from ..interactions.registry import LAW_PARAMETERS, make_law
+from ..interactions.registry import LAW_PARAMETERS, PARAMETERS, make_law
 from ..interactions.registry import names as interaction_names
 
 EXIT_BAD_INPUT = 2
@@ -120,17 +120,10 @@ def _make_interaction(
     name, work, range_, stiffness, core_stiffness, modulus, pixel_size, adhesion_length=None
 ):
     """The law of the ``--interaction`` options (checked and built by the registry)."""
-    return make_law(
-        name,
-        contact_modulus=modulus,
-        pixel_size=pixel_size,
-        spelling="cli",
-        adhesion_length=adhesion_length,
-        work_of_adhesion=work,
-        range=range_,
-        stiffness=stiffness,
-        core_stiffness=core_stiffness,
-    )
+    given = dict(work=work, range_=range_, stiffness=stiffness, core_stiffness=core_stiffness,
+                 adhesion_length=adhesion_length)  # fmt: skip
+    law = {k: given[_LAW_OPTION_DEST.get(k, k)] for k in PARAMETERS}
+    return make_law(name, contact_modulus=modulus, pixel_size=pixel_size, spelling="cli", **law)
 
 
 def _substrate(shape, modulus, pixel_size, thickness, poisson, base, periodic=True):
