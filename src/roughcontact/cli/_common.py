@@ -229,6 +229,29 @@ def _load_surface(surface_file, channel, detrend, fill_missing, pixel_size):
     return np.array(topo.heights), px, topo.to_dict()
 
 
+def _surface_substrate_law(surface_file, options):
+    """SURFACE's heights, pixel size and summary (:func:`_load_surface`), the substrate and
+    the law of a command's surface-file, substrate and interaction options (``options``:
+    their click arguments by name)."""
+    o = options
+    h, pixel_size, surface = _load_surface(
+        surface_file, o["channel"], o["detrend"], o["fill_missing"], o["pixel_size"]
+    )
+    if o["non_periodic"] and min(h.shape) < 3:  # as the path and the statistics refuse it
+        raise ParameterError(
+            f"heights must be at least 3 x 3 points for --non-periodic, got {h.shape}"
+        )
+    sub = _substrate(
+        h.shape, o["modulus"], pixel_size, o["thickness"], o["poisson"], o["base"],
+        not o["non_periodic"],
+    )  # fmt: skip
+    law = _make_interaction(
+        o["interaction"], o["work"], o["range_"], o["stiffness"], o["core_stiffness"],
+        o["modulus"], pixel_size, o["adhesion_length"],
+    )  # fmt: skip
+    return h, pixel_size, surface, sub, law
+
+
 def _filled(topo):
     """``topo``, after saying on stderr what was filled (the line every scan reader prints)."""
     if topo.info.get("missing_data"):
