@@ -66,8 +66,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validate import ParameterError, positive
-from .._validate import nonnegative as _alpha
+from .._validate import ParameterError, nonnegative, positive
 from .westergaard import westergaard_full_contact_pressure
 
 __all__ = [
@@ -158,7 +157,7 @@ def johnson_sinusoid_mean_pressure(
     """
     lam = positive("wavelength", wavelength)
     p_star = westergaard_full_contact_pressure(amplitude, lam, contact_modulus)
-    w = _alpha("work_of_adhesion", work_of_adhesion)
+    w = nonnegative("work_of_adhesion", work_of_adhesion)
     alpha = (
         0.0
         if w == 0
@@ -225,7 +224,7 @@ def johnson_sinusoid_pressure(
     lam = positive("wavelength", wavelength)
     p_star = westergaard_full_contact_pressure(amplitude, lam, contact_modulus)
     E = positive("contact_modulus", contact_modulus)
-    w = _alpha("work_of_adhesion", work_of_adhesion)
+    w = nonnegative("work_of_adhesion", work_of_adhesion)
     a = float(_contact_half_width("contact_half_width", contact_half_width, lam))
     x = np.asarray(x, dtype=float)
     s2 = math.sin(math.pi * a / lam) ** 2
@@ -290,7 +289,7 @@ def johnson_sinusoid_thresholds(alpha) -> JohnsonSinusoidThresholds:
     """
     from scipy.optimize import brentq  # scipy on first use: import roughcontact stays light
 
-    al = _alpha("alpha", alpha)
+    al = nonnegative("alpha", alpha)
     if al >= JOHNSON_ALPHA_MAX:
         raise ParameterError(
             f"alpha must be in [0, {JOHNSON_ALPHA_MAX:.6f}) for a stable partial contact to "
@@ -334,4 +333,4 @@ def johnson_sinusoid_pull_off_pressure(
 
 def johnson_sinusoid_spontaneous_full_contact(alpha) -> bool:
     """True if the surfaces jump into full contact at zero load: ``alpha >= 3^(3/4)/4``."""
-    return _alpha("alpha", alpha) >= JOHNSON_FULL_CONTACT_ALPHA
+    return nonnegative("alpha", alpha) >= JOHNSON_FULL_CONTACT_ALPHA

@@ -24,8 +24,7 @@ import math
 
 import numpy as np
 
-from .._validate import nonnegative as _nonnegative
-from .._validate import positive
+from .._validate import nonnegative, positive
 
 __all__ = [
     "westergaard_contact_fraction",
@@ -55,7 +54,7 @@ def westergaard_contact_half_width(mean_pressure, amplitude, wavelength, contact
     """
     lam = positive("wavelength", wavelength)
     p_star = westergaard_full_contact_pressure(amplitude, lam, contact_modulus)
-    pbar = _nonnegative("mean_pressure", mean_pressure)
+    pbar = nonnegative("mean_pressure", mean_pressure)
     if pbar >= p_star:
         return lam / 2
     return lam / math.pi * math.asin(math.sqrt(pbar / p_star))
@@ -100,7 +99,7 @@ def westergaard_pressure(x, mean_pressure, amplitude, wavelength, contact_modulu
     """
     lam = positive("wavelength", wavelength)
     p_star = westergaard_full_contact_pressure(amplitude, lam, contact_modulus)
-    pbar = _nonnegative("mean_pressure", mean_pressure)
+    pbar = nonnegative("mean_pressure", mean_pressure)
     x = np.asarray(x, dtype=float)
     if pbar >= p_star:
         p = pbar + p_star * np.cos(2 * np.pi * x / lam)
