@@ -7,6 +7,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from roughcontact.errors import ParameterError
+
 POSIX = pytest.mark.skipif(os.name != "posix", reason="FIFOs, signals")
 #: Real instrument files kept in the repository (data/topographies/README.md).
 DATA = Path(__file__).parent / "data" / "topographies"
@@ -14,15 +16,36 @@ DATA = Path(__file__).parent / "data" / "topographies"
 SMOKE = Path(__file__).parents[1] / "studies" / "smoke.toml"
 
 
-def cli_one_line_error(result, *words, code=2):
-    """A click result that failed with ``code`` and one stderr line naming ``words``."""
-    assert result.exit_code == code, result.output
+def cli_one_line_error(result, *words, code=2, start=""):
+    """A click result that failed with exit ``code``: one stderr line
+    ``roughcontact: error: <start>...`` naming every one of ``words``, no traceback and no
+    uncaught exception. Returns the line."""
+    assert result.exit_code == code, (result.exit_code, result.output, result.exception)
     lines = result.stderr.strip().splitlines()
     assert len(lines) == 1, result.output
-    assert lines[0].startswith("roughcontact: error: "), result.output
+    assert lines[0].startswith("roughcontact: error: " + start), result.output
     for word in words:
         assert word in lines[0], (word, lines[0])
     assert "Traceback" not in result.output
+    assert result.exception is None or isinstance(result.exception, SystemExit), result.exception
+    return lines[0]
+
+
+def one_line_message(err, *words):
+    """The message of a raised error (the exception or pytest's ``ExceptionInfo``): one
+    line naming every one of ``words``. Returns it."""
+    text = str(getattr(err, "value", err))
+    assert "\n" not in text, text
+    for word in words:
+        assert word in text, (word, text)
+    return text
+
+
+def raises_one_line(call, *words, error=ParameterError):
+    """``call()`` raises ``error`` with a one-line message naming ``words``; returns it."""
+    with pytest.raises(error) as err:
+        call()
+    return one_line_message(err, *words)
 
 
 def random_surface(seed=1, n=16):

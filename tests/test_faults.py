@@ -19,6 +19,7 @@ import time
 import numpy as np
 import pytest
 import xarray as xr
+from _helpers import cli_one_line_error
 from click.testing import CliRunner
 
 import roughcontact as rc
@@ -69,14 +70,6 @@ def _temporaries(directory):
     return sorted(p.name for p in directory.rglob("*") if p.name.endswith(".tmp"))
 
 
-def _one_error_line(result, start):
-    lines = result.stderr.strip().splitlines()
-    assert len(lines) == 1, result.output
-    assert lines[0].startswith(f"roughcontact: error: {start}"), result.output
-    assert "Traceback" not in result.output
-    return lines[0]
-
-
 # --- a full disk ----------------------------------------------------------------------
 
 
@@ -95,7 +88,7 @@ def test_full_disk_during_path_exits_1_and_keeps_the_last_checkpoint(
     args = ["path", str(sphere_file), "--loads", "1e-3", "5e-3", "1e-3", "-o", str(out)]
     r = CliRunner().invoke(main, [*args, "--checkpoint-seconds", "0"])
     assert r.exit_code == 1, r.output
-    line = _one_error_line(r, f"no space left writing {out} ")
+    line = cli_one_line_error(r, code=1, start=f"no space left writing {out} ")
     assert "holds the 2 steps of the last checkpoint" in line
     assert disk.failed  # the third write did fail half-way
     with xr.open_dataset(out, engine="h5netcdf") as ds:  # the previous complete file
@@ -110,7 +103,7 @@ def test_full_disk_on_the_first_write_leaves_no_file(tmp_path, sphere_file, monk
     args = ["path", str(sphere_file), "--loads", "1e-3", "3e-3", "1e-3", "-o", str(out)]
     r = CliRunner().invoke(main, args)
     assert r.exit_code == 1, r.output
-    line = _one_error_line(r, "no space left writing")
+    line = cli_one_line_error(r, code=1, start="no space left writing")
     assert "checkpoint" not in line and not out.exists() and _temporaries(tmp_path) == []
 
 
@@ -125,7 +118,7 @@ def test_full_disk_during_study_run_exits_1_and_keeps_the_finished_tasks(
     assert r.exit_code == 1, r.output
     spec = load_study(study)
     order = sorted(spec.tasks, key=lambda t: (t.params["seed"], t.id))  # seed by seed
-    _one_error_line(r, f"no space left writing {task_path(out, order[3].id)} ")
+    cli_one_line_error(r, code=1, start=f"no space left writing {task_path(out, order[3].id)} ")
     assert disk.failed and _temporaries(out) == []
     assert [check_task(out, t)[0] for t in order[:4]] == [True, True, True, False]
     monkeypatch.undo()  # space freed: resume computes the rest only

@@ -12,6 +12,7 @@ import math
 import numpy as np
 import pytest
 import xarray as xr
+from _helpers import one_line_message
 
 import roughcontact as rc
 from roughcontact.analysis.contact_geometry import contact_patches
@@ -154,19 +155,12 @@ def test_an_empty_path_round_trips(tmp_path):
     assert back.sizes["step"] == 0 and set(PER_STEP) <= set(back.variables)
 
 
-def _one_line(err, *words):
-    text = str(err.value)
-    assert "\n" not in text, text
-    for word in words:
-        assert word in text, text
-
-
 @pytest.mark.parametrize("missing", ["perimeter", "branch"])
 def test_reading_refuses_a_missing_variable(path, tmp_path, missing):
     f = write_path(path.drop_vars(missing), tmp_path / "m.nc")
     with pytest.raises(rc.ParameterError) as err:
         read_path(f)
-    _one_line(err, "lacks", missing)
+    one_line_message(err, "lacks", missing)
 
 
 @pytest.mark.parametrize(
@@ -184,7 +178,7 @@ def test_reading_refuses_wrong_dims(path, tmp_path, edit):
     f = write_path(bad, tmp_path / "d.nc")
     with pytest.raises(rc.ParameterError) as err:
         read_path(f)
-    _one_line(err, f"variable {name} has dims", "expected (" + ", ".join(path[name].dims))
+    one_line_message(err, f"variable {name} has dims", "expected (" + ", ".join(path[name].dims))
     read_path(f, check=False)  # unchecked, it opens
 
 
@@ -193,7 +187,7 @@ def test_reading_refuses_what_is_not_netcdf(tmp_path):
     junk.write_text("not netcdf")
     with pytest.raises(rc.ParameterError) as err:
         read_path(junk)
-    _one_line(err, "not a readable NetCDF", "junk.nc")
+    one_line_message(err, "not a readable NetCDF", "junk.nc")
 
 
 def test_check_names_an_out_of_range_attribute(path):
@@ -201,7 +195,7 @@ def test_check_names_an_out_of_range_attribute(path):
     ds.attrs["pixel_size"] = -1.0
     with pytest.raises(rc.ParameterError) as err:
         check_path(ds)
-    _one_line(err, "pixel_size", "accepted")
+    one_line_message(err, "pixel_size", "accepted")
 
 
 def test_adding_fields_equals_keeping_them_on_the_path():
@@ -216,7 +210,7 @@ def test_adding_fields_equals_keeping_them_on_the_path():
     assert add_fields(some, {}) is some
     with pytest.raises(rc.ParameterError) as err:
         add_fields(some.drop_vars("gap"), {4: state["fields"]})
-    _one_line(err, "gap")
+    one_line_message(err, "gap")
 
 
 def _keep(state, step):

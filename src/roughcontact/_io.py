@@ -217,6 +217,21 @@ def read_netcdf(path, *, refusal: str):
         raise ParameterError(f"{refusal}: {err}") from None
 
 
+def _probe(probe: Path, what: str, named: Path) -> None:
+    """Create the new file ``probe`` (``O_EXCL``, never through a link) and remove it at
+    once: a one-line ParameterError naming ``what`` and ``named`` if its directory does
+    not take it (permissions, a read-only mount, a full disk)."""
+    flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_NOFOLLOW", 0)
+    try:
+        os.close(os.open(probe, flags, 0o600))
+    except OSError as err:
+        raise ParameterError(
+            f"{what} {str(named)!r} cannot be written: {err.strerror or err} "
+            f"in {str(probe.parent)!r}"
+        ) from None
+    _remove(probe)
+
+
 def check_writable(path, what: str = "output") -> Path:
     """Refuse, before any work, an output file that could not be written at the end.
 
@@ -239,15 +254,7 @@ def check_writable(path, what: str = "output") -> Path:
         raise ParameterError(f"{what} {str(final)!r}: its directory {str(parent)!r} {why}")
     if final.is_dir() and not final.is_symlink():
         raise ParameterError(f"{what} {str(final)!r} is a directory; expected a file name")
-    tmp = final.with_name(f".{final.name}.{uuid.uuid4().hex[:12]}.probe")
-    flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_NOFOLLOW", 0)
-    try:
-        os.close(os.open(tmp, flags, 0o600))
-    except OSError as err:
-        raise ParameterError(
-            f"{what} {str(final)!r} cannot be written: {err.strerror or err} in {str(parent)!r}"
-        ) from None
-    _remove(tmp)
+    _probe(final.with_name(f".{final.name}.{uuid.uuid4().hex[:12]}.probe"), what, final)
     return final
 
 
@@ -275,15 +282,7 @@ def check_directory_writable(path, what: str = "output directory") -> Path:
         raise ParameterError(
             f"{what} {str(directory)!r} cannot be created: {str(base)!r} is not a directory"
         )
-    probe = base / f".roughcontact-probe-{uuid.uuid4().hex[:12]}"
-    flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_NOFOLLOW", 0)
-    try:
-        os.close(os.open(probe, flags, 0o600))
-    except OSError as err:
-        raise ParameterError(
-            f"{what} {str(directory)!r} cannot be written: {err.strerror or err} in {str(base)!r}"
-        ) from None
-    _remove(probe)
+    _probe(base / f".roughcontact-probe-{uuid.uuid4().hex[:12]}", what, directory)
     return directory
 
 

@@ -278,15 +278,26 @@ def positive(name: str, value, *, allow_inf: bool = False) -> float:
     return v
 
 
+def _checked(name: str, value, convert, ok, not_a_number: str, bad: str):
+    """``convert(value)`` if ``ok`` of it, else a :class:`ParameterError`: ``not_a_number``
+    when ``convert`` refuses the value, ``bad`` when it fails ``ok`` (message templates with
+    ``{name}`` and ``{value!r}``, formatted only on failure: a large array's repr is slow)."""
+    try:
+        v = convert(value)
+    except (TypeError, ValueError):
+        raise ParameterError(not_a_number.format(name=name, value=value)) from None
+    if not ok(v):
+        raise ParameterError(bad.format(name=name, value=value))
+    return v
+
+
 def in_range(name: str, value, lo: float, hi: float) -> float:
     """Return ``float(value)`` if ``lo <= value <= hi``, else raise :class:`ParameterError`."""
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise ParameterError(f"{name} must be a number in [{lo}, {hi}], got {value!r}") from None
-    if not (lo <= v <= hi):
-        raise ParameterError(f"{name} must be in [{lo}, {hi}], got {value!r}")
-    return v
+    return _checked(
+        name, value, float, lambda v: lo <= v <= hi,
+        f"{{name}} must be a number in [{lo}, {hi}], got {{value!r}}",
+        f"{{name}} must be in [{lo}, {hi}], got {{value!r}}",
+    )  # fmt: skip
 
 
 def shape2d(name: str, shape) -> tuple[int, int]:
@@ -387,35 +398,40 @@ def _rms_is_finite(name, heights, xp) -> None:
 
 def finite(name: str, value) -> float:
     """Return ``float(value)`` if it is a finite real number, else raise ParameterError."""
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise ParameterError(f"{name} must be a finite real number, got {value!r}") from None
-    if not math.isfinite(v):
-        raise ParameterError(f"{name} must be a finite real number, got {value!r}")
-    return v
+    message = "{name} must be a finite real number, got {value!r}"
+    return _checked(name, value, float, math.isfinite, message, message)
+
+
+def nonnegative(name: str, value) -> float:
+    """Return ``float(value)`` if it is finite and >= 0, else raise ParameterError."""
+    return _checked(
+        name, value, float, lambda v: v >= 0 and not math.isinf(v),
+        "{name} must be a number >= 0, got {value!r}",
+        "{name} must be finite and >= 0, got {value!r}",
+    )  # fmt: skip
+
+
+def _float_array(value):
+    return np.asarray(value, dtype=float)
 
 
 def nonnegative_array(name: str, value):
     """``value`` as a float array (or 0-d array) that is finite and >= 0."""
-    try:
-        v = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
-        raise ParameterError(f"{name} must be a number or array >= 0, got {value!r}") from None
-    if not np.all(np.isfinite(v)) or np.any(v < 0):
-        raise ParameterError(f"{name} must be finite and >= 0, got {value!r}")
-    return v
+    return _checked(
+        name, value, _float_array, lambda v: np.all(np.isfinite(v)) and not np.any(v < 0),
+        "{name} must be a number or array >= 0, got {value!r}",
+        "{name} must be finite and >= 0, got {value!r}",
+    )  # fmt: skip
 
 
 def positive_array(name: str, value):
     """``value`` as a float array (or 0-d array) that is finite and > 0."""
-    try:
-        v = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
-        raise ParameterError(f"{name} must be a positive number or array, got {value!r}") from None
-    if v.size == 0 or not np.all(np.isfinite(v)) or np.any(v <= 0):
-        raise ParameterError(f"{name} must be > 0 and finite, got {value!r}")
-    return v
+    return _checked(
+        name, value, _float_array,
+        lambda v: v.size > 0 and np.all(np.isfinite(v)) and not np.any(v <= 0),
+        "{name} must be a positive number or array, got {value!r}",
+        "{name} must be > 0 and finite, got {value!r}",
+    )  # fmt: skip
 
 
 def json_ready(record) -> dict:
@@ -426,6 +442,16 @@ def json_ready(record) -> dict:
         k: (None if isinstance(v, float) and not math.isfinite(v) else v)
         for k, v in asdict(record).items()
     }
+
+
+class JsonRecord:
+    """Base of a dataclass result whose :meth:`to_dict` is :func:`json_ready`."""
+
+    __slots__ = ()
+
+    def to_dict(self) -> dict:
+        """JSON-ready dict; non-finite numbers become ``None``."""
+        return json_ready(self)
 
 
 def json_safe(obj):

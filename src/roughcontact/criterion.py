@@ -25,7 +25,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from ._validate import ParameterError, json_ready, positive
+from ._validate import JsonRecord, ParameterError, positive
 from .theory.pastewka_robbins import KAPPA_REP, STICKINESS_THRESHOLD, predict
 from .units import DIMENSIONS, parse_quantity
 
@@ -40,7 +40,7 @@ def _si(value, dimension: str, name: str) -> float:
 
 
 @dataclass(frozen=True)
-class StickinessCriterion:
+class StickinessCriterion(JsonRecord):
     """Verdict of Eq. 10 for one material pair and surface (see :func:`stickiness_criterion`).
 
     All dimensional values in SI: pressures in Pa, ``work_of_adhesion`` in J/m^2, lengths
@@ -73,10 +73,6 @@ class StickinessCriterion:
     necessary_condition_met: bool
     max_sticky_contact_modulus: float
     max_sticky_d_rep: float
-
-    def to_dict(self) -> dict:
-        """JSON-ready dict; non-finite numbers become ``None``."""
-        return json_ready(self)
 
 
 def stickiness_criterion(

@@ -25,6 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._validate import GRID_SIZE, PIXEL_SIZE, POISSON, ParameterError, Range
+from .interactions.registry import LAW_PARAMETERS
 
 __all__ = [
     "ATTRIBUTES",
@@ -138,11 +139,8 @@ ATTRIBUTES = (
     Attribute("interaction", "", "repr of the law"),
     Attribute("substrate", "", "repr of the substrate"),
     Attribute("roughcontact_version", "", "the version that computed the path"),
-    Attribute("work_of_adhesion", "pressure*length", "w (adhesive laws)"),
-    Attribute("range", "length", "the law's range (Δr, ρ or δ)"),
-    Attribute("stiffness", "pressure/length", "k = V''(a0) (Lennard-Jones walls)"),
-    Attribute("equilibrium_distance", "length", "a0 of the Lennard-Jones walls"),
-    Attribute("core_stiffness", "pressure/length", "soft core of the exponential law"),
+    # the law's parameters: the interaction registry's one list
+    *(Attribute(p.name, p.unit, p.meaning) for p in LAW_PARAMETERS if p.recorded),
     Attribute("until_area", "1", "target A_rep/A0 of the approach (NaN: none)"),
     Attribute("until_area_reached", "", "1 if the approach reached until_area"),
     Attribute("dtype", "", "floating-point precision of the computation"),

@@ -86,7 +86,7 @@ class _CompatFFT:
 
 
 def test_wavevectors_on_a_device_the_namespace_fft_helpers_refuse():
-    from roughcontact.surfaces.statistics import _wavevectors
+    from roughcontact.spectra import _rfft_wavevectors as _wavevectors
 
     device = xp.Device("device1")
     namespace = types.SimpleNamespace(**{k: getattr(xp, k) for k in dir(xp) if k[0] != "_"})

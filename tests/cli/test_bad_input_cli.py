@@ -9,6 +9,7 @@ import math
 import numpy as np
 import pytest
 import xarray as xr
+from _helpers import cli_one_line_error
 from click.testing import CliRunner
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
@@ -21,18 +22,6 @@ N = 16
 
 def invoke(*args, **kwargs):
     return CliRunner().invoke(main, [str(a) for a in args], **kwargs)
-
-
-def one_line_error(r, *words):
-    """Exit code 2, one non-empty stderr line starting 'roughcontact: error:', no traceback."""
-    assert r.exit_code == 2, (r.exit_code, r.output, r.exception)
-    lines = [line for line in r.stderr.splitlines() if line.strip()]
-    assert len(lines) == 1, r.stderr
-    assert lines[0].startswith("roughcontact: error:"), r.stderr
-    assert "Traceback" not in r.output
-    for word in words:
-        assert word in lines[0], (word, lines[0])
-    return lines[0]
 
 
 def strict_json(text):
@@ -67,16 +56,18 @@ def files(tmp_path_factory):
 @pytest.mark.parametrize("tol", ["2", "1", "0", "-1e-8", "nan", "inf"])
 def test_contact_tol_outside_0_1(files, tol):
     r = invoke("contact", files["S"], "--load", "1e-3", "--tol", tol)
-    one_line_error(r, "--tol", "(0, 1)", tol if tol[0].isalpha() else "")
+    cli_one_line_error(r, "--tol", "(0, 1)", tol if tol[0].isalpha() else "")
 
 
 def test_contact_tol_float32_floor(files):
     r = invoke("contact", files["S"], "--load", "1e-3", "--tol", "1e-7", "--dtype", "float32")
-    one_line_error(r, "tol", "1e-06", "float32")
+    cli_one_line_error(r, "tol", "1e-06", "float32")
 
 
 def test_max_iter_range(files):
-    one_line_error(invoke("contact", files["S"], "--load", "1e-3", "--max-iter", 0), "--max-iter")
+    cli_one_line_error(
+        invoke("contact", files["S"], "--load", "1e-3", "--max-iter", 0), "--max-iter"
+    )
 
 
 def test_path_fields_at_out_of_range(files, tmp_path):
@@ -84,7 +75,7 @@ def test_path_fields_at_out_of_range(files, tmp_path):
     args = ["path", files["small"], "--offsets", 0, 0.1, 0.05, "--offset-unit", "bearing_area"]
     for step in (999, 3, -4):
         r = invoke(*args, "-o", out, "--fields-at", step)
-        one_line_error(r, "fields_at", str(step), "3 steps", "-3 to 2")
+        cli_one_line_error(r, "fields_at", str(step), "3 steps", "-3 to 2")
         assert not out.exists()  # refused before any solve
     r = invoke(*args, "-o", out, "--fields-at", -1, "--fields-at", 0)
     assert r.exit_code == 0, r.output
@@ -94,7 +85,7 @@ def test_path_fields_at_out_of_range(files, tmp_path):
 def test_study_fields_at_out_of_range(tmp_path, make_study):
     study = make_study(extra="[output]\nfields_at = [-1, 999]")  # 6 + 5 = 11 steps
     r = invoke("study", "run", study, "-o", tmp_path / "out", "--no-progress")
-    one_line_error(r, "fields_at", "999", "11 steps", "-11 to 10")
+    cli_one_line_error(r, "fields_at", "999", "11 steps", "-11 to 10")
     assert not (tmp_path / "out").exists()
 
 
@@ -115,12 +106,12 @@ def test_heights_whose_rms_overflows(files, tmp_path):
         "surface", tmp_path / "x.npy", "--size", N, "--hurst", "0.8", "--rms-height", "1e300",
         "--short-cutoff", "4", "--json",
     )  # fmt: skip
-    one_line_error(r, "rms_height", "1e150")
+    cli_one_line_error(r, "rms_height", "1e150")
     assert r.stdout == ""
     big = tmp_path / "big.npy"
     np.save(big, np.load(files["S"]) * 1e300)
     r = invoke("contact", big, "--load", "1e-3", "--json")
-    one_line_error(r, "big.npy", "rms", "overflow")
+    cli_one_line_error(r, "big.npy", "rms", "overflow")
     assert r.stdout == ""
 
 
@@ -133,7 +124,7 @@ def test_heights_files_of_the_wrong_kind(files, tmp_path, kind, word):
     path = tmp_path / f"{kind}.npy"
     np.save(path, data, allow_pickle=kind == "object")
     r = invoke("contact", path, "--load", "1e-3")
-    one_line_error(r, f"{kind}.npy", word)
+    cli_one_line_error(r, f"{kind}.npy", word)
 
 
 @pytest.mark.parametrize(
@@ -146,7 +137,7 @@ def test_heights_files_of_the_wrong_kind(files, tmp_path, kind, word):
     ],
 )
 def test_analyze_options_share_the_schema(files, args, words):
-    one_line_error(invoke("analyze", files["path"], *args, "--json"), *words)
+    cli_one_line_error(invoke("analyze", files["path"], *args, "--json"), *words)
 
 
 @pytest.mark.parametrize(
@@ -158,16 +149,16 @@ def test_analyze_options_share_the_schema(files, args, words):
     ],
 )
 def test_figures_options(files, tmp_path, args, words):
-    one_line_error(invoke("figures", files["dir"], "-o", tmp_path / "f", *args), *words)
+    cli_one_line_error(invoke("figures", files["dir"], "-o", tmp_path / "f", *args), *words)
 
 
 def test_surface_too_large_for_memory(tmp_path, monkeypatch):
     out = tmp_path / "x.npy"
     args = ["surface", out, *SURFACE]
-    line = one_line_error(invoke(*args, "--size", 1_000_000), "shape", "TiB", "available")
+    line = cli_one_line_error(invoke(*args, "--size", 1_000_000), "shape", "TiB", "available")
     assert "1000000" in line
     monkeypatch.setattr(_validate, "available_memory", lambda: 4 * 2**30)  # 4 GiB here
-    one_line_error(invoke(*args, "--size", 30000), "(30000, 30000)", "53.6 GiB", "4 GiB")
+    cli_one_line_error(invoke(*args, "--size", 30000), "(30000, 30000)", "53.6 GiB", "4 GiB")
     assert not out.exists()
 
 
@@ -181,7 +172,7 @@ def test_surface_too_large_for_memory(tmp_path, monkeypatch):
 )
 def test_surface_options(tmp_path, args, words):
     base = ["surface", tmp_path / "x.npy", "--size", N, *SURFACE]
-    one_line_error(invoke(*base, *args), *words)
+    cli_one_line_error(invoke(*base, *args), *words)
 
 
 @pytest.mark.parametrize(
@@ -195,11 +186,11 @@ def test_surface_options(tmp_path, args, words):
 )
 def test_path_offsets(files, tmp_path, offsets, words):
     r = invoke("path", files["small"], "--offsets", *offsets, "-o", tmp_path / "q.nc")
-    one_line_error(r, *words)
+    cli_one_line_error(r, *words)
 
 
 def test_contact_pixel_size_underflow(files):
-    one_line_error(
+    cli_one_line_error(
         invoke("contact", files["S"], "--load", "1e-3", "--pixel-size", "1e-300"),
         "--pixel-size",
         "[1e-25, 1e25]",
@@ -209,7 +200,9 @@ def test_contact_pixel_size_underflow(files):
 def test_study_file_of_random_bytes(tmp_path):
     study = tmp_path / "random.toml"
     study.write_bytes(np.random.default_rng(0).bytes(512))
-    one_line_error(invoke("study", "run", study, "-o", tmp_path / "out"), "random.toml", "UTF-8")
+    cli_one_line_error(
+        invoke("study", "run", study, "-o", tmp_path / "out"), "random.toml", "UTF-8"
+    )
 
 
 @pytest.mark.parametrize("value", [0.0, math.nan, -1.0])
@@ -219,7 +212,7 @@ def test_analyze_path_file_with_bad_modulus(files, tmp_path, value):
     edited = tmp_path / "edited.nc"
     ds.to_netcdf(edited, engine="h5netcdf")
     r = invoke("analyze", edited, "--json")
-    one_line_error(r, "contact_modulus", "> 0 and finite")
+    cli_one_line_error(r, "contact_modulus", "> 0 and finite")
     assert r.stdout == ""  # nothing (no LAPACK text) breaks --json
 
 
@@ -246,7 +239,7 @@ def test_study_collect_malformed_manifest(tmp_path, manifest, words):
     study.mkdir()
     (study / "study.json").write_text(manifest)
     r = invoke("study", "collect", study, "-o", tmp_path / "c.nc")
-    one_line_error(r, *words)
+    cli_one_line_error(r, *words)
 
 
 def test_hard_wall_study_with_tensile_loads(tmp_path):
@@ -257,7 +250,7 @@ def test_hard_wall_study_with_tensile_loads(tmp_path):
         '[path]\ncontrol = "load"\nvalues = [0.01, -0.01]\n'
     )
     r = invoke("study", "run", study, "-o", tmp_path / "out", "--no-progress")
-    one_line_error(r, "hardwall", "tensile", ">= 0")
+    cli_one_line_error(r, "hardwall", "tensile", ">= 0")
     assert not (tmp_path / "out").exists()
 
 

@@ -7,6 +7,7 @@ import math
 import numpy as np
 import pytest
 import xarray as xr
+from _helpers import cli_one_line_error
 from click.testing import CliRunner
 
 from roughcontact.cli.main import MAX_STEPS, main
@@ -15,16 +16,6 @@ from roughcontact.cli.main import MAX_STEPS, main
 def invoke(*args):
     """Run the CLI; numbers are passed exactly (a float's repr round-trips)."""
     return CliRunner().invoke(main, [float(a) if isinstance(a, float) else str(a) for a in args])
-
-
-def one_line_error(r, *needles):
-    """Exit code 2 and a single readable line naming what was wrong."""
-    assert r.exit_code == 2, r.output
-    lines = r.output.strip().splitlines()
-    assert len(lines) == 1 and lines[0].startswith("roughcontact: error:"), r.output
-    assert "Traceback" not in r.output
-    for needle in needles:
-        assert needle in lines[0], r.output
 
 
 @pytest.fixture(scope="module")
@@ -157,7 +148,9 @@ def test_until_area_alone_takes_the_default_approach_and_says_so(surface, tmp_pa
     np.testing.assert_array_equal(ds["offset"].values, same["offset"].values)
     assert ds.attrs["until_area_reached"] == 1 and ds.attrs["offset_unit"] == "rms_height"
     # neither an approach nor --until-area: still one line naming the options
-    one_line_error(invoke("path", surface_file, "-o", tmp_path / "n.nc"), "--offsets", "--loads")
+    cli_one_line_error(
+        invoke("path", surface_file, "-o", tmp_path / "n.nc"), "--offsets", "--loads"
+    )
 
 
 def test_until_area_not_reached_says_how_far_it_got(surface, tmp_path):
@@ -289,15 +282,17 @@ def test_contact_text_output_states_the_units(surface):
 )
 def test_path_bad_values_are_one_line(surface, tmp_path, args, needles):
     surface_file, _ = surface
-    one_line_error(invoke("path", surface_file, "-o", tmp_path / "p.nc", *args), *needles)
+    cli_one_line_error(invoke("path", surface_file, "-o", tmp_path / "p.nc", *args), *needles)
 
 
 def test_contact_adhesion_length_errors(surface):
     surface_file, _ = surface
     base = ["contact", surface_file, "--offset", 0.3, "--interaction", "dugdale", "--range", 1]
-    one_line_error(invoke(*base, "--adhesion-length", 0), "--adhesion-length", "> 0")
-    one_line_error(invoke(*base, "--adhesion-length", "inf"), "--adhesion-length", "> 0")
-    one_line_error(invoke(*base, "--adhesion-length", 0.01, "--work-of-adhesion", 0.01), "not both")
-    one_line_error(invoke(*base[:-2], "--adhesion-length", 0.01), "needs --range")
+    cli_one_line_error(invoke(*base, "--adhesion-length", 0), "--adhesion-length", "> 0")
+    cli_one_line_error(invoke(*base, "--adhesion-length", "inf"), "--adhesion-length", "> 0")
+    cli_one_line_error(
+        invoke(*base, "--adhesion-length", 0.01, "--work-of-adhesion", 0.01), "not both"
+    )
+    cli_one_line_error(invoke(*base[:-2], "--adhesion-length", 0.01), "needs --range")
     r = invoke(*base[:4], "--interaction", "dugdale", "--range", 1)
-    one_line_error(r, "needs --work-of-adhesion (or --adhesion-length)")
+    cli_one_line_error(r, "needs --work-of-adhesion (or --adhesion-length)")

@@ -12,6 +12,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from _helpers import cli_one_line_error
 from click.testing import CliRunner
 
 import roughcontact as rc
@@ -95,47 +96,40 @@ def test_report_directory(scan, tmp_path):
         assert (out / name).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
-def _one_line_error(r):
-    assert r.exit_code == 2, r.output
-    err = r.stderr.strip()
-    assert err.startswith("roughcontact: error: ") and "\n" not in err, err
-    assert "Traceback" not in r.output
-    assert r.exception is None or isinstance(r.exception, SystemExit)  # no uncaught error
-    return err
-
-
 def test_bad_input_one_line_exit_2(scan, tmp_path):
-    err = _one_line_error(
+    err = cli_one_line_error(
         _run([scan, *NPY, "--modulus", "-10MPa", "--work-of-adhesion", "50mJ/m^2"])
     )
     assert "modulus" in err
-    err = _one_line_error(_run([scan, *NPY, "--modulus", "10 m", "--work-of-adhesion", "5mJ/m^2"]))
+    err = cli_one_line_error(
+        _run([scan, *NPY, "--modulus", "10 m", "--work-of-adhesion", "5mJ/m^2"])
+    )
     assert "modulus" in err
-    err = _one_line_error(_run([tmp_path / "missing.npy", *NPY, *MATERIAL]))
+    err = cli_one_line_error(_run([tmp_path / "missing.npy", *NPY, *MATERIAL]))
     assert "missing.npy" in err
     corrupt = tmp_path / "corrupt.npy"
     corrupt.write_bytes(b"\x93NUMPY garbage that is not an array")
-    _one_line_error(_run([corrupt, *NPY, *MATERIAL]))
-    err = _one_line_error(_run([scan, *MATERIAL]))  # no pixel size: lattice units
+    cli_one_line_error(_run([corrupt, *NPY, *MATERIAL]))
+    err = cli_one_line_error(_run([scan, *MATERIAL]))  # no pixel size: lattice units
     assert "pixel_size" in err
-    _one_line_error(_run([scan, *NPY, *MATERIAL, "--detrend", "cubic"]))
-    _one_line_error(_run([scan, *NPY, *MATERIAL, "--fit-range", "1nm", "1 kg"]))
+    cli_one_line_error(_run([scan, *NPY, *MATERIAL, "--detrend", "cubic"]))
+    cli_one_line_error(_run([scan, *NPY, *MATERIAL, "--fit-range", "1nm", "1 kg"]))
     out = tmp_path / "afile"
     out.write_text("")
-    _one_line_error(_run([scan, *NPY, *MATERIAL, "-o", out]))
+    cli_one_line_error(_run([scan, *NPY, *MATERIAL, "-o", out]))
 
 
 def test_unknown_channel_and_corrupted_instrument_file(tmp_path):
     path = _real("nid-1.nid")
-    err = _one_line_error(_run([path, *MATERIAL, "--channel", "no such channel"]))
+    err = cli_one_line_error(_run([path, *MATERIAL, "--channel", "no such channel"]))
     assert "channel" in err
     for size in (5000, 100_000):  # truncated: header only, header and part of the data
         bad = tmp_path / f"bad{size}.nid"
         bad.write_bytes(path.read_bytes()[:size])
-        _one_line_error(_run([bad, *MATERIAL]))
+        cli_one_line_error(_run([bad, *MATERIAL]))
     garbage = tmp_path / "garbage.di"
     garbage.write_bytes(b"\\*File list\r\n\x00\x01 not an AFM file")
-    _one_line_error(_run([garbage, *MATERIAL]))
+    cli_one_line_error(_run([garbage, *MATERIAL]))
 
 
 @pytest.mark.parametrize("name", ["di-1.di", "nid-1.nid", "dektak-1.csv"])
@@ -208,10 +202,10 @@ def test_simulate_json_text_and_report(fine_scan, tmp_path):
 def test_simulate_bad_options_one_line(fine_scan):
     for option, value in (("--simulate-size", "32"), ("--simulate-size", "x"),
                           ("--simulate-seeds", "0"), ("--simulate-seeds", "100")):  # fmt: skip
-        err = _one_line_error(_run([fine_scan, *FINE, *STIFF, "--simulate", option, value]))
+        err = cli_one_line_error(_run([fine_scan, *FINE, *STIFF, "--simulate", option, value]))
         assert option in err
     soft = ["--modulus", "1 MPa", "--work-of-adhesion", "50 mJ/m^2"]  # l_a/a0 = 167 > 100
-    err = _one_line_error(_run([fine_scan, *FINE, *soft, "--simulate"]))
+    err = cli_one_line_error(_run([fine_scan, *FINE, *soft, "--simulate"]))
     assert "l_a/a0" in err and "167" in err
 
 
@@ -286,12 +280,12 @@ def test_counter_surface_and_fill_missing_options(scan, tmp_path):
     np.save(holed, h)
     r = _run([holed, *NPY, *SILICON])
     assert r.exit_code == 0 and "note: filled 1 of 16384 missing points" in r.output
-    err = _one_line_error(_run([holed, *NPY, *SILICON, "--no-fill-missing"]))
+    err = cli_one_line_error(_run([holed, *NPY, *SILICON, "--no-fill-missing"]))
     assert "--fill-missing" in err
     h[:40] = np.nan  # 31 %: refused by default, filled when asked, with the fraction
     h[100, 3] = np.nan
     np.save(holed, h)
-    err = _one_line_error(_run([holed, *NPY, *SILICON]))
+    err = cli_one_line_error(_run([holed, *NPY, *SILICON]))
     assert "31.3% of the points (5121 of 16384)" in err and "--fill-missing" in err
     r = _run([holed, *NPY, *SILICON, "--fill-missing"])
     assert r.exit_code == 0 and "31.256% of the scan" in r.output

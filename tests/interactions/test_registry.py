@@ -129,3 +129,35 @@ def test_no_import_cycle_between_backend_and_validate():
     from roughcontact._validate import ParameterError
 
     assert ParameterError is rc.ParameterError
+
+
+def test_every_place_that_names_law_parameters_reads_the_registry_list():
+    from roughcontact.cli.main import main
+    from roughcontact.interactions.registry import LAW_ATTRIBUTES, LAW_PARAMETERS, PARAMETERS
+    from roughcontact.pathdata import ATTRIBUTES
+    from roughcontact.plot._data import ADHESION_KEYS
+
+    given = [p.name for p in LAW_PARAMETERS if p.given]
+    # the contract: these spellings never change
+    assert PARAMETERS == ("adhesion_length", "work_of_adhesion", "range", "stiffness",
+                          "core_stiffness")  # fmt: skip
+    assert LAW_ATTRIBUTES == ("work_of_adhesion", "range", "stiffness",
+                              "equilibrium_distance", "core_stiffness")  # fmt: skip
+    options = {o for p in main.commands["contact"].params for o in p.opts}
+    assert {"--" + k.replace("_", "-") for k in given} <= options
+    assert list(SCHEMA["interaction"]) == ["law", *given]
+    assert ADHESION_KEYS == ("law", *given)
+    recorded = [a.name for a in ATTRIBUTES if a.name in LAW_ATTRIBUTES]
+    assert recorded == list(LAW_ATTRIBUTES)
+
+
+def test_provenance_records_the_built_law_under_the_registry_names():
+    from roughcontact.solvers.path import provenance
+
+    law = rc.Exponential(work_of_adhesion=0.1, range=0.3, core_stiffness=4.0)
+    attrs = provenance(rc.sinusoid(16, 8.0, 0.1), rc.Substrate((16, 16)), law)
+    assert {k: attrs[k] for k in ("work_of_adhesion", "range", "core_stiffness")} == {
+        "work_of_adhesion": 0.1, "range": 0.3, "core_stiffness": 4.0}  # fmt: skip
+    assert "stiffness" not in attrs and "equilibrium_distance" not in attrs
+    lj = provenance(rc.sinusoid(16, 8.0, 0.1), rc.Substrate((16, 16)), rc.SmoothLJ93(range=1.5))
+    assert lj["equilibrium_distance"] == 1.0 and lj["range"] == 1.5

@@ -10,6 +10,7 @@ import urllib.request
 
 import psutil
 import pytest
+from _helpers import cli_one_line_error
 from click.testing import CliRunner
 
 from roughcontact import ParameterError, _io
@@ -40,12 +41,6 @@ def _cli(*args):
     return CliRunner().invoke(main, ["study", "run", *map(str, args), "--no-progress"])
 
 
-def _one_line(r, *words):
-    lines = r.output.strip().splitlines()
-    assert r.exit_code == 2 and len(lines) == 1, r.output
-    assert all(w in lines[0] for w in words), r.output
-
-
 # -- links planted in the output directory -------------------------------------------
 
 
@@ -69,7 +64,7 @@ def test_lock_file_that_is_not_a_plain_file_is_refused(tmp_path, make_study, vic
     assert victim.read_text() == VICTIM and not (tmp_path / "created.txt").exists()
     assert sorted(p.name for p in out.iterdir()) == [LOCK_NAME]  # nothing else written
     r = _cli(make_study(), "-o", out)  # the command line
-    _one_line(r, str(lock), "refusing")
+    cli_one_line_error(r, str(lock), "refusing")
     assert victim.read_text() == VICTIM
 
 
@@ -168,7 +163,7 @@ def test_resume_with_another_study_is_refused_and_writes_nothing(tmp_path, make_
     other = make_study(num=5, name="other.toml")
     before = _snapshot(out)
     r = _cli(other, "-o", out, "--resume")
-    _one_line(r, "resume", str(first), str(other), "tiny", "sha256")
+    cli_one_line_error(r, "resume", str(first), str(other), "tiny", "sha256")
     with pytest.raises(ParameterError, match="resume: .* holds study 'tiny' from"):
         _run(other, out, resume=True)
     assert _snapshot(out) == before
@@ -301,13 +296,13 @@ def test_remote_tls_scheduler_with_security_and_cli_options(tmp_path, make_study
     assert r.exit_code == 0 and "8 computed" in r.output, r.output
     # bad TLS options: one line, exit 2, nothing written
     bad = tmp_path / "bad"
-    _one_line(_cli(study, "-o", bad, "--scheduler", address), "needs TLS credentials")
+    cli_one_line_error(_cli(study, "-o", bad, "--scheduler", address), "needs TLS credentials")
     r = _cli(study, "-o", bad, "--scheduler", address, "--tls-cert", pem["cert"])
-    _one_line(r, "tls_ca_file", "--tls-ca-file")
+    cli_one_line_error(r, "tls_ca_file", "--tls-ca-file")
     r = _cli(study, "-o", bad, "--scheduler", address, *tls[:2], "--tls-cert", tmp_path / "no")
-    _one_line(r, "tls_cert", "readable PEM file")
-    _one_line(_cli(study, "-o", bad, *tls), "applies to a remote scheduler")
-    _one_line(_cli(study, "-o", bad, "--scheduler", address, "--dashboard"), "dashboard")
+    cli_one_line_error(r, "tls_cert", "readable PEM file")
+    cli_one_line_error(_cli(study, "-o", bad, *tls), "applies to a remote scheduler")
+    cli_one_line_error(_cli(study, "-o", bad, "--scheduler", address, "--dashboard"), "dashboard")
     assert not bad.exists()
     with pytest.raises(ParameterError, match="security must be a distributed.security"):
         run_study(study, bad, scheduler=address, security={"tls_ca_file": "x"})

@@ -16,9 +16,9 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from _helpers import raises_one_line
 
 import roughcontact as rc
-from roughcontact import ParameterError
 from roughcontact.topography import file_kind, load_topography
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "topographies"
@@ -134,16 +134,6 @@ def dektak(path: Path) -> dict:
     }
 
 
-def one_line_error(call, *match):
-    with pytest.raises(ParameterError) as err:
-        call()
-    text = str(err.value)
-    assert "\n" not in text
-    for m in match:
-        assert m in text, text
-    return text
-
-
 # ----------------------------------------------------------------------------- files
 
 
@@ -178,7 +168,7 @@ def test_nanoscope_default_channel_and_names():
 
 
 def test_nanoscope_channel_without_heights():
-    one_line_error(
+    raises_one_line(
         lambda: load_topography(data_file("di-1.di"), channel="Phase"),
         "'Phase'",
         "holds no heights",
@@ -239,7 +229,7 @@ def test_dektak_line_scan_resampled_and_tip_radius():
     local = np.abs(np.diff(ref["heights"]))
     bound = np.maximum(np.r_[local, 0], np.r_[0, local])
     assert np.all(np.abs(topo.heights - ref["heights"]) <= bound + 1e-18)
-    one_line_error(lambda: load_topography(path, resample=False), "non-uniform", "resample=True")
+    raises_one_line(lambda: load_topography(path, resample=False), "non-uniform", "resample=True")
 
 
 def test_load_heights_of_instrument_files_in_metres():
@@ -247,7 +237,7 @@ def test_load_heights_of_instrument_files_in_metres():
     h = rc.load_heights(path, channel=1)
     np.testing.assert_array_equal(h, load_topography(path, channel=1).heights)
     assert h.flags.writeable
-    one_line_error(lambda: rc.load_heights(data_file("dektak-1.csv")), "line scan", "2D")
+    raises_one_line(lambda: rc.load_heights(data_file("dektak-1.csv")), "line scan", "2D")
 
 
 def test_file_kind():
@@ -258,8 +248,8 @@ def test_file_kind():
 
 def test_instrument_file_keeps_its_own_units():
     path = data_file("nid-1.nid")
-    one_line_error(lambda: load_topography(path, pixel_size=1e-9), "pixel_size", "leave")
-    one_line_error(lambda: load_topography(path, height_unit="nm"), "height_unit", "leave")
+    raises_one_line(lambda: load_topography(path, pixel_size=1e-9), "pixel_size", "leave")
+    raises_one_line(lambda: load_topography(path, height_unit="nm"), "height_unit", "leave")
 
 
 # ---------------------------------------------------------------------------- errors
@@ -267,7 +257,7 @@ def test_instrument_file_keeps_its_own_units():
 
 @pytest.mark.parametrize("channel", ["Amplitude", 4, -1, True])
 def test_unknown_channel_lists_the_available_ones(channel):
-    one_line_error(
+    raises_one_line(
         lambda: load_topography(data_file("di-1.di"), channel=channel),
         "di-1.di",
         "0 'Height', 1 'Height', 2 'Phase', 3 'AmplitudeError'",
@@ -281,12 +271,12 @@ def test_truncated_file(tmp_path, name, channel):
     raw = data_file(name).read_bytes()
     copy = tmp_path / name
     copy.write_bytes(raw[: len(raw) // 2])  # the channel's data is cut
-    one_line_error(lambda: load_topography(copy, channel=channel), name)
-    one_line_error(lambda: rc.load_heights(copy, channel=channel), name)
+    raises_one_line(lambda: load_topography(copy, channel=channel), name)
+    raises_one_line(lambda: rc.load_heights(copy, channel=channel), name)
 
 
 def test_missing_file(tmp_path):
-    one_line_error(lambda: load_topography(tmp_path / "nope.di"), "nope.di", "no such file")
+    raises_one_line(lambda: load_topography(tmp_path / "nope.di"), "nope.di", "no such file")
 
 
 @pytest.mark.parametrize(
@@ -302,17 +292,17 @@ def test_unknown_format(tmp_path, name, content):
     path = tmp_path / name
     path.write_bytes(content)
     if name == "garbage.txt":  # the reason numpy gives, too
-        one_line_error(lambda: load_topography(path), name, "as plain text", "'x'")
+        raises_one_line(lambda: load_topography(path), name, "as plain text", "'x'")
     else:
-        one_line_error(lambda: load_topography(path), name, "unknown or unreadable")
-    one_line_error(lambda: rc.load_heights(path), name)
+        raises_one_line(lambda: load_topography(path), name, "unknown or unreadable")
+    raises_one_line(lambda: rc.load_heights(path), name)
 
 
 def test_without_surface_topography(tmp_path, monkeypatch):
     monkeypatch.setitem(sys.modules, "SurfaceTopography", None)  # import fails
     path = tmp_path / "scan.spm"
     path.write_bytes(b"\x00binary")
-    one_line_error(lambda: load_topography(path), 'pip install "roughcontact[topography]"')
+    raises_one_line(lambda: load_topography(path), 'pip install "roughcontact[topography]"')
     h = np.arange(12.0).reshape(3, 4)
     np.save(tmp_path / "h.npy", h)  # plain files need nothing else
     np.testing.assert_array_equal(load_topography(tmp_path / "h.npy").heights, h)
@@ -341,12 +331,12 @@ def test_plain_files_with_units(tmp_path):
     metres = load_topography(tmp_path / "h.txt", pixel_size=(1e-9, 3e-9))  # heights in m
     np.testing.assert_array_equal(metres.heights, h)
     assert metres.pixel_size == (1e-9, 3e-9)
-    one_line_error(lambda: load_topography(tmp_path / "h.txt", height_unit="nm"), "pixel_size")
-    one_line_error(
+    raises_one_line(lambda: load_topography(tmp_path / "h.txt", height_unit="nm"), "pixel_size")
+    raises_one_line(
         lambda: load_topography(tmp_path / "h.txt", pixel_size=1, height_unit="parsec"),
         "height_unit",
     )
-    one_line_error(lambda: load_topography(tmp_path / "h.txt", channel=1), "channel")
+    raises_one_line(lambda: load_topography(tmp_path / "h.txt", channel=1), "channel")
 
 
 def test_plain_line_scan(tmp_path):
@@ -362,7 +352,7 @@ def test_missing_points_refused_or_filled(tmp_path):
     data = plane.copy()
     data[3:5, 2:6] = np.nan  # inside the scan: a plane is harmonic, kept exactly
     np.save(tmp_path / "holes.npy", data)
-    one_line_error(
+    raises_one_line(
         lambda: load_topography(tmp_path / "holes.npy"), "holes.npy", "8 of 72", "11.1%",
         "--fill-missing",
     )  # fmt: skip
@@ -430,7 +420,7 @@ def test_masked_points_refused_or_filled(stand_in):
     mask = np.zeros(plane.shape, dtype=bool)
     mask[2:4, 3:5] = True
     path = stand_in(_Reader(np.ma.masked_array(np.where(mask, -1e9, plane), mask)))
-    one_line_error(lambda: load_topography(path), "4 of 72", "5.6%", "fill_missing=True")
+    raises_one_line(lambda: load_topography(path), "4 of 72", "5.6%", "fill_missing=True")
     topo = load_topography(path, fill_missing=True)
     np.testing.assert_allclose(topo.heights, plane * 1e-9, rtol=1e-12)
     assert topo.pixel_size == pytest.approx((1e-9, 1e-9))
@@ -440,9 +430,9 @@ def test_masked_points_refused_or_filled(stand_in):
 def test_file_without_lateral_size_or_units(stand_in):
     h = np.arange(12.0).reshape(3, 4)
     path = stand_in(_Reader(h, unit=None, sizes=None))
-    text = one_line_error(lambda: load_topography(path), "holds no heights", "height_unit=")
+    text = raises_one_line(lambda: load_topography(path), "holds no heights", "height_unit=")
     assert "as plain text" not in text  # a binary file
-    one_line_error(lambda: load_topography(path, height_unit="um"), "pixel_size", "lateral")
+    raises_one_line(lambda: load_topography(path, height_unit="um"), "pixel_size", "lateral")
     topo = load_topography(path, pixel_size=2e-6, height_unit="um")
     np.testing.assert_allclose(topo.heights, h * 1e-6, rtol=1e-15)
     assert topo.pixel_size == pytest.approx((2e-6, 2e-6)) and topo.height_unit == "um"

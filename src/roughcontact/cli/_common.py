@@ -15,7 +15,7 @@ import click
 
 from .._signals import EXIT_TERMINATED, exit_code
 from .._validate import MAX_ITER, PIXEL_SIZE, TOL, ParameterError, click_check, json_safe
-from ..interactions.registry import make_law
+from ..interactions.registry import LAW_PARAMETERS, PARAMETERS, make_law
 from ..interactions.registry import names as interaction_names
 
 EXIT_BAD_INPUT = 2
@@ -48,52 +48,69 @@ def _json(obj) -> str:
     return json.dumps(json_safe(obj), allow_nan=False)
 
 
-def _interaction_options(f):
-    opts = [
-        click.option(
-            "--interaction",
-            type=click.Choice(INTERACTIONS),
-            default="hardwall",
-            show_default=True,
-            help="Surface interaction law.",
-        ),
-        click.option(
-            "--work-of-adhesion",
-            "work",
-            type=float,
-            default=None,
-            help="w (energy per area, units of E* x length).",
-        ),
-        click.option(
-            "--adhesion-length",
-            "adhesion_length",
-            type=float,
-            default=None,
-            help="ℓa = w/E* (length, > 0): w = ℓa x --modulus; instead of --work-of-adhesion.",
-        ),
-        click.option(
-            "--range",
-            "range_",
-            type=float,
-            default=None,
-            help="Δr (lj93smooth), ρ (exponential), cohesive width (dugdale).",
-        ),
-        click.option(
-            "--stiffness",
-            type=float,
-            default=None,
-            help="lj93smooth site stiffness per area k = V''(a0) (default E*/(2 a0)).",
-        ),
-        click.option(
-            "--core-stiffness",
-            type=float,
-            default=None,
-            help="exponential: soft repulsive core k_c for g < 0 (default: hard wall).",
-        ),
-    ]
-    for o in reversed(opts):
+def _option(*decls, help, rng=None, **kwargs):
+    """``click.option`` as every command writes it: a default (not None, not a flag's) is
+    shown in ``--help`` and gives the type unless ``type`` is given; with ``rng`` (a
+    :class:`~roughcontact._validate.Range`) the value is checked (a one-line error naming
+    the option and its accepted range) and ``{accepted}`` in ``help`` is that range."""
+    default = kwargs.get("default")
+    if default is not None and not kwargs.get("is_flag"):
+        kwargs.setdefault("show_default", True)
+        kwargs.setdefault("type", type(default))
+    if rng is not None:
+        kwargs["callback"] = click_check(rng)
+        kwargs.setdefault("type", int if rng.integer else float)
+        help = help.format(accepted=rng.accepted)
+    return click.option(*decls, help=help, **kwargs)
+
+
+def _output_option(help, *dest, file=False, **kwargs):
+    """``-o/--output``: a directory to write (a file with ``file``), required unless it
+    has a default."""
+    kind = click.Path(dir_okay=False) if file else click.Path(file_okay=False)
+    kwargs.setdefault("required", "default" not in kwargs)
+    return _option("-o", "--output", *dest, type=kind, help=help, **kwargs)
+
+
+def _pixel_size_option():
+    return _option("--pixel-size", default=1.0, rng=PIXEL_SIZE, help="a0 (length, {accepted}).")
+
+
+def _stacked(f, options):
+    """``f`` under the click options, the first one listed first in ``--help``."""
+    for o in reversed(list(options)):
         f = o(f)
     return f
+
+
+#: the commands' argument of a law parameter's option, where it is not the parameter's name
+_LAW_OPTION_DEST = {"work_of_adhesion": "work", "range": "range_"}
+
+
+def _law_options():
+    """``--interaction`` and one option per law parameter of the registry's one list (w
+    first: the help lists it before its alternative, ℓa)."""
+    given = sorted(
+        (p for p in LAW_PARAMETERS if p.given), key=lambda p: p.name != "work_of_adhesion"
+    )
+    yield _option(
+        "--interaction",
+        type=click.Choice(INTERACTIONS),
+        default="hardwall",
+        help="Surface interaction law.",
+    )
+    for p in given:
+        yield click.option(
+            "--" + p.name.replace("_", "-"),
+            _LAW_OPTION_DEST.get(p.name, p.name),
+            type=float,
+            default=None,
+            help=p.option_help,
+        )
+
+
+def _interaction_options(f):
+    return _stacked(f, _law_options())
 
 
 INTERACTIONS = list(interaction_names())  # hardwall, lj93smooth, lj93, exponential, dugdale
@@ -103,17 +120,10 @@ def _make_interaction(
     name, work, range_, stiffness, core_stiffness, modulus, pixel_size, adhesion_length=None
 ):
     """The law of the ``--interaction`` options (checked and built by the registry)."""
-    return make_law(
-        name,
-        contact_modulus=modulus,
-        pixel_size=pixel_size,
-        spelling="cli",
-        adhesion_length=adhesion_length,
-        work_of_adhesion=work,
-        range=range_,
-        stiffness=stiffness,
-        core_stiffness=core_stiffness,
-    )
+    given = dict(work=work, range_=range_, stiffness=stiffness, core_stiffness=core_stiffness,
+                 adhesion_length=adhesion_length)  # fmt: skip
+    law = {k: given[_LAW_OPTION_DEST.get(k, k)] for k in PARAMETERS}
+    return make_law(name, contact_modulus=modulus, pixel_size=pixel_size, spelling="cli", **law)
 
 
 def _substrate(shape, modulus, pixel_size, thickness, poisson, base, periodic=True):
@@ -131,108 +141,40 @@ def _substrate(shape, modulus, pixel_size, thickness, poisson, base, periodic=Tr
 
 
 def _substrate_options(f):
-    opts = [
-        click.option(
-            "--modulus",
-            type=float,
-            default=1.0,
-            show_default=True,
-            help="Contact modulus E* = E/(1-ν²).",
-        ),
-        click.option(
-            "--pixel-size",
-            type=float,
-            default=1.0,
-            show_default=True,
-            callback=click_check(PIXEL_SIZE),
-            help=f"a0 (length, {PIXEL_SIZE.accepted}).",
-        ),
-        click.option(
-            "--thickness", type=float, default=None, help="Layer thickness (default: half-space)."
-        ),
-        click.option(
-            "--poisson",
-            type=float,
-            default=0.5,
-            show_default=True,
-            help="ν in [0, 0.5] (layers only).",
-        ),
-        click.option(
-            "--base",
-            type=click.Choice(["bonded", "frictionless"]),
-            default="bonded",
-            show_default=True,
-            help="Layer attachment to its rigid base.",
-        ),
-        click.option(
-            "--non-periodic",
-            "non_periodic",
-            is_flag=True,
-            default=False,
-            help="Free boundary: press the surface as measured, without periodic images "
-            "(a half-space on a zero-padded grid; not with --thickness).",
-        ),
-        click.option(
-            "--tol",
-            type=float,
-            default=None,
-            callback=click_check(TOL),
-            help=f"Solver tolerance, {TOL.accepted} (default 1e-8; 1e-6, its floor, with "
-            "--dtype float32).",
-        ),
-        click.option(
-            "--max-iter",
-            type=int,
-            default=5000,
-            show_default=True,
-            callback=click_check(MAX_ITER),
-            help=f"Iteration cap per state ({MAX_ITER.accepted}).",
-        ),
-        click.option(
-            "--device",
-            default="cpu",
-            show_default=True,
-            help="Where to compute: cpu, cuda or cuda:N (an NVIDIA GPU through CuPy).",
-        ),
-        click.option(
-            "--dtype",
-            type=click.Choice(["float64", "float32"]),
-            default="float64",
-            show_default=True,
-            help="Floating-point precision of the computation.",
-        ),
-    ]
-    for o in reversed(opts):
-        f = o(f)
-    return f
+    return _stacked(f, (
+        _option("--modulus", default=1.0, help="Contact modulus E* = E/(1-ν²)."),
+        _pixel_size_option(),
+        _option("--thickness", type=float, help="Layer thickness (default: half-space)."),
+        _option("--poisson", default=0.5, help="ν in [0, 0.5] (layers only)."),
+        _option("--base", type=click.Choice(["bonded", "frictionless"]), default="bonded",
+                help="Layer attachment to its rigid base."),
+        _option("--non-periodic", "non_periodic", is_flag=True, default=False,
+                help="Free boundary: press the surface as measured, without periodic images "
+                "(a half-space on a zero-padded grid; not with --thickness)."),
+        _option("--tol", rng=TOL, help="Solver tolerance, {accepted} (default 1e-8; 1e-6, its "
+                "floor, with --dtype float32)."),
+        _option("--max-iter", default=5000, rng=MAX_ITER,
+                help="Iteration cap per state ({accepted})."),
+        _option("--device", default="cpu",
+                help="Where to compute: cpu, cuda or cuda:N (an NVIDIA GPU through CuPy)."),
+        _option("--dtype", type=click.Choice(["float64", "float32"]), default="float64",
+                help="Floating-point precision of the computation."),
+    ))  # fmt: skip
 
 
 def _surface_file_options(f):
     """--channel, --detrend and --fill-missing of the commands that read a SURFACE file."""
-    opts = [
-        click.option(
-            "--channel",
-            default=None,
-            help="Channel of an instrument file, by name or index (default: the file's "
-            "default channel).",
-        ),
-        click.option(
-            "--detrend",
-            type=click.Choice(["none", "height", "plane", "curvature"]),
-            default="none",
-            show_default=True,
-            help="Least-squares mean, tilt or 2nd-order polynomial removed from SURFACE.",
-        ),
-        click.option(
-            "--fill-missing/--no-fill-missing",
-            default=None,
-            help="Fill missing points of an instrument file of any fraction (harmonic "
-            "interpolation) / refuse any. Default: fill up to 1 % (said on stderr), refuse more.",
-        ),
-    ]
-    for o in reversed(opts):
-        f = o(f)
-    return f
+    return _stacked(f, (
+        _option("--channel", help="Channel of an instrument file, by name or index (default: "
+                "the file's default channel)."),
+        _option("--detrend", type=click.Choice(["none", "height", "plane", "curvature"]),
+                default="none",
+                help="Least-squares mean, tilt or 2nd-order polynomial removed from SURFACE."),
+        _option("--fill-missing/--no-fill-missing", default=None,
+                help="Fill missing points of an instrument file of any fraction (harmonic "
+                "interpolation) / refuse any. Default: fill up to 1 % (said on stderr), "
+                "refuse more."),
+    ))  # fmt: skip
 
 
 def _load_surface(surface_file, channel, detrend, fill_missing, pixel_size):
@@ -285,6 +227,29 @@ def _load_surface(surface_file, channel, detrend, fill_missing, pixel_size):
         )
     topo = remove_trend(topo, detrend)
     return np.array(topo.heights), px, topo.to_dict()
+
+
+def _surface_substrate_law(surface_file, options):
+    """SURFACE's heights, pixel size and summary (:func:`_load_surface`), the substrate and
+    the law of a command's surface-file, substrate and interaction options (``options``:
+    their click arguments by name)."""
+    o = options
+    h, pixel_size, surface = _load_surface(
+        surface_file, o["channel"], o["detrend"], o["fill_missing"], o["pixel_size"]
+    )
+    if o["non_periodic"] and min(h.shape) < 3:  # as the path and the statistics refuse it
+        raise ParameterError(
+            f"heights must be at least 3 x 3 points for --non-periodic, got {h.shape}"
+        )
+    sub = _substrate(
+        h.shape, o["modulus"], pixel_size, o["thickness"], o["poisson"], o["base"],
+        not o["non_periodic"],
+    )  # fmt: skip
+    law = _make_interaction(
+        o["interaction"], o["work"], o["range_"], o["stiffness"], o["core_stiffness"],
+        o["modulus"], pixel_size, o["adhesion_length"],
+    )  # fmt: skip
+    return h, pixel_size, surface, sub, law
 
 
 def _filled(topo):

@@ -12,11 +12,9 @@ from ._common import (
     _interaction_options,
     _json,
     _line,
-    _load_surface,
-    _make_interaction,
-    _substrate,
     _substrate_options,
     _surface_file_options,
+    _surface_substrate_law,
     _units,
 )
 from ._outputs import check_fields_file, save_fields_file
@@ -36,32 +34,7 @@ from ._outputs import check_fields_file, save_fields_file
 )
 @_surface_file_options
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
-def contact(
-    surface_file,
-    load,
-    offset,
-    modulus,
-    pixel_size,
-    thickness,
-    poisson,
-    base,
-    non_periodic,
-    tol,
-    max_iter,
-    device,
-    dtype,
-    interaction,
-    work,
-    adhesion_length,
-    range_,
-    stiffness,
-    core_stiffness,
-    save_fields,
-    channel,
-    detrend,
-    fill_missing,
-    as_json,
-):
+def contact(surface_file, load, offset, save_fields, as_json, **options):
     """Solve one contact state of SURFACE under --load or --offset.
 
     Exit code 3 if the solver did not converge, 2 on bad input.
@@ -72,18 +45,11 @@ def contact(
         raise ParameterError("give exactly one of --load or --offset")
     if save_fields is not None:
         check_fields_file(save_fields)
-    h, pixel_size, surface = _load_surface(surface_file, channel, detrend, fill_missing, pixel_size)
-    if non_periodic and min(h.shape) < 3:  # as path and the statistics refuse it
-        raise ParameterError(
-            f"heights must be at least 3 x 3 points for --non-periodic, got {h.shape}"
-        )
-    sub = _substrate(h.shape, modulus, pixel_size, thickness, poisson, base, not non_periodic)
-    law = _make_interaction(
-        interaction, work, range_, stiffness, core_stiffness, modulus, pixel_size, adhesion_length
-    )
+    h, pixel_size, surface, sub, law = _surface_substrate_law(surface_file, options)
+    o = options
     res = solve(
-        h, sub, law, load=load, offset=offset, tol=tol, max_iter=max_iter, device=device,
-        dtype=dtype,
+        h, sub, law, load=load, offset=offset, tol=o["tol"], max_iter=o["max_iter"],
+        device=o["device"], dtype=o["dtype"],
     )  # fmt: skip
     if save_fields:
         save_fields_file(save_fields, res)
@@ -94,7 +60,7 @@ def contact(
     if as_json:
         click.echo(_json(summary))
     else:
-        units = _units(modulus, pixel_size, surface)
+        units = _units(o["modulus"], pixel_size, surface)
         for k, v in summary.items():
             v = _describe_surface(v) if k == "surface" else v
             click.echo(_line(k, v, units.get(k), 16))

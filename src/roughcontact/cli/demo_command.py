@@ -13,27 +13,17 @@ from pathlib import Path
 import click
 
 from .._validate import ParameterError, json_safe
-from ._common import _fail
+from ._common import _fail, _option, _output_option
 
 
 @click.command()
-@click.option("--size", type=int, default=512, show_default=True, help="Grid size n (hard wall).")
-@click.option("--seed", type=int, default=2014, show_default=True, help="Surface seed.")
-@click.option(
-    "--study-size",
-    type=int,
-    default=256,
-    show_default=True,
-    help="Grid size of the adhesive study (0: skip the study).",
-)
-@click.option("--seeds", type=int, default=5, show_default=True, help="Study realisations.")
-@click.option(
-    "-o",
-    "--output",
-    type=click.Path(file_okay=False),
+@_option("--size", default=512, help="Grid size n (hard wall).")
+@_option("--seed", default=2014, help="Surface seed.")
+@_option("--study-size", default=256, help="Grid size of the adhesive study (0: skip the study).")
+@_option("--seeds", default=5, help="Study realisations.")
+@_output_option(
+    "Directory for the study's results, figures and report.md (resumed if present).",
     default="roughcontact-demo",
-    show_default=True,
-    help="Directory for the study's results, figures and report.md (resumed if present).",
 )
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
 def demo(size, seed, study_size, seeds, output, as_json):

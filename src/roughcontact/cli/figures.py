@@ -6,7 +6,8 @@ from pathlib import Path
 
 import click
 
-from .._validate import DPI, TARGET_AREA, ParameterError, click_check
+from .._validate import DPI, TARGET_AREA, ParameterError
+from ._common import _option, _output_option
 
 
 def _load(source: Path):
@@ -30,39 +31,22 @@ def _load(source: Path):
 
 @click.command("figures")
 @click.argument("source", metavar="DIR", type=click.Path(exists=True, path_type=Path))
-@click.option(
-    "-o",
-    "--output",
-    "out_dir",
-    required=True,
-    type=click.Path(file_okay=False),
-    help="Directory for the figure files (created).",
-)
-@click.option(
+@_output_option("Directory for the figure files (created).", "out_dir")
+@_option(
     "--format",
     "formats",
     multiple=True,
     default=("png", "pdf"),
-    show_default=True,
     type=click.Choice(["png", "pdf", "svg"]),
     help="File format (repeatable).",
 )
-@click.option(
+@_option(
     "--target-area",
-    type=float,
     default=0.02,
-    show_default=True,
-    callback=click_check(TARGET_AREA),
-    help=f"A_rep/A0 of the contact maps of Fig. 1 ({TARGET_AREA.accepted}).",
+    rng=TARGET_AREA,
+    help="A_rep/A0 of the contact maps of Fig. 1 ({accepted}).",
 )
-@click.option(
-    "--dpi",
-    type=int,
-    default=150,
-    show_default=True,
-    callback=click_check(DPI),
-    help=f"PNG resolution (dots per inch, {DPI.accepted}).",
-)
+@_option("--dpi", default=150, rng=DPI, help="PNG resolution (dots per inch, {accepted}).")
 def figures(source, out_dir, formats, target_area, dpi):
     """Draw the paper's figures from DIR, a study directory or a collected .nc file.
 

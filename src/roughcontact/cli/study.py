@@ -6,6 +6,8 @@ import sys
 
 import click
 
+from ._common import _option, _output_option
+
 EXIT_TASKS_FAILED = 1
 
 
@@ -16,13 +18,8 @@ def study():
 
 @study.command("run")
 @click.argument("study_file", metavar="STUDY.toml", type=click.Path(dir_okay=False))
-@click.option(
-    "-o",
-    "--output",
-    "out_dir",
-    type=click.Path(file_okay=False),
-    required=True,
-    help="Study directory: one NetCDF file per task, the manifest, failure records.",
+@_output_option(
+    "Study directory: one NetCDF file per task, the manifest, failure records.", "out_dir"
 )
 @click.option("--resume", is_flag=True, help="Continue a study: skip finished tasks.")
 @click.option(
@@ -117,13 +114,7 @@ def run(
 
 @study.command("collect")
 @click.argument("out_dir", metavar="DIR", type=click.Path(file_okay=False))
-@click.option(
-    "-o",
-    "--output",
-    type=click.Path(dir_okay=False),
-    required=True,
-    help="NetCDF file for the combined dataset (task x step).",
-)
+@_output_option("NetCDF file for the combined dataset (task x step).", file=True)
 @click.option("--no-timings", is_flag=True, help="Leave out wall-clock times (reproducible files).")
 def collect(out_dir, output, no_timings):
     """Combine the task files of study directory DIR into one NetCDF file."""
@@ -142,22 +133,11 @@ def collect(out_dir, output, no_timings):
 
 @study.command("report")
 @click.argument("source", metavar="DIR|COLLECTED.nc", type=click.Path(exists=True))
-@click.option(
-    "-o",
-    "--output",
-    "out_dir",
-    type=click.Path(file_okay=False),
-    required=True,
-    help="Report directory: README.md, claims.json, versions.json, data/, figures/.",
+@_output_option(
+    "Report directory: README.md, claims.json, versions.json, data/, figures/.", "out_dir"
 )
-@click.option(
-    "--confidence",
-    type=float,
-    default=0.95,
-    show_default=True,
-    help="Level of the intervals over seeds, in (0, 1).",
-)
-@click.option("--dpi", type=int, default=120, show_default=True, help="Figure resolution.")
+@_option("--confidence", default=0.95, help="Level of the intervals over seeds, in (0, 1).")
+@_option("--dpi", default=120, help="Figure resolution.")
 def report(source, out_dir, confidence, dpi):
     """Check the paper's claims on a study: data, figures and a Markdown report.
 

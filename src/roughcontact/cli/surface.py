@@ -5,47 +5,27 @@ from __future__ import annotations
 import click
 
 from .._io import check_writable
-from .._validate import GRID_SIZE, PIXEL_SIZE, SEED, ParameterError, click_check
-from ._common import _json
+from .._validate import GRID_SIZE, SEED, ParameterError
+from ._common import _json, _option, _pixel_size_option
 
 
 @click.command()
 @click.argument("out", type=click.Path(dir_okay=False))
-@click.option(
+@_option(
     "--size",
-    type=int,
     required=True,
-    callback=click_check(GRID_SIZE),
+    rng=GRID_SIZE,
     help="Grid size n (n x n sites; at most what fits in memory).",
 )
-@click.option(
-    "--size-y",
-    type=int,
-    default=None,
-    callback=click_check(GRID_SIZE),
-    help="Second grid size (default: --size).",
-)
+@_option("--size-y", rng=GRID_SIZE, help="Second grid size (default: --size).")
 @click.option("--hurst", type=float, required=True, help="Hurst exponent H in (0, 1].")
 @click.option("--rms-slope", type=float, default=None, help="rms slope h'rms (spectral).")
 @click.option("--rms-height", type=float, default=None, help="rms height (length).")
 @click.option("--short-cutoff", type=float, required=True, help="λs (length, >= 2 a0).")
 @click.option("--long-cutoff", type=float, default=None, help="λL (length; default L/2).")
 @click.option("--no-rolloff", is_flag=True, help="Zero power below 2π/λL instead of flat.")
-@click.option(
-    "--seed",
-    type=int,
-    default=None,
-    callback=click_check(SEED),
-    help=f"Random seed (reproducible; {SEED.accepted}).",
-)
-@click.option(
-    "--pixel-size",
-    type=float,
-    default=1.0,
-    show_default=True,
-    callback=click_check(PIXEL_SIZE),
-    help=f"a0 (length, {PIXEL_SIZE.accepted}).",
-)
+@_option("--seed", rng=SEED, help="Random seed (reproducible; {accepted}).")
+@_pixel_size_option()
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
 def surface(
     out,

@@ -23,6 +23,12 @@ Registering a new law
    of adhesion from either w or ℓa, ``given`` the other parameters given).
 3. Nothing else: ``--interaction`` and the study schema's ``law`` take their choices
    from here. A study file can only pass the parameters of :data:`PARAMETERS`.
+
+The law parameter names themselves are listed once, in :data:`LAW_PARAMETERS`: the
+command line's options, the study schema's ``[interaction]`` keys, the attributes a path
+records (``roughcontact.pathdata``, ``solvers.path.provenance``) and the plots' keys are
+derived from it. A new parameter is one :class:`LawParameter` there (and its argument in
+the commands that build laws).
 """
 
 from __future__ import annotations
@@ -40,10 +46,13 @@ from .lj93 import LennardJones93
 from .lj93smooth import SmoothLJ93
 
 __all__ = [
+    "LAW_ATTRIBUTES",
+    "LAW_PARAMETERS",
     "PARAMETERS",
     "REGISTRY",
     "Interaction",
     "LawEntry",
+    "LawParameter",
     "Parameter",
     "law_parameters",
     "lookup",
@@ -51,17 +60,60 @@ __all__ = [
     "names",
 ]
 
-# the law parameters make_law accepts, in the order they are checked and reported
-PARAMETERS = ("adhesion_length", "work_of_adhesion", "range", "stiffness", "core_stiffness")
-# the numeric members a law may have, as the results record them
-LAW_ATTRIBUTES = (
-    "work_of_adhesion",
-    "range",
-    "stiffness",
-    "core_stiffness",
-    "equilibrium_distance",
-    "adhesion_length",
-)
+
+@dataclass(frozen=True)
+class LawParameter:
+    """One law parameter name, written once for every place that spells it.
+
+    ``name`` is the keyword of :func:`make_law`, the study file's key, the command
+    line's option (``--`` + name with ``-``) and the key of the path's attributes;
+    ``unit`` and ``meaning`` describe it there, ``option_help`` in ``--help``.
+    ``given``: a parameter one gives (:data:`PARAMETERS`); ``recorded``: a number a built
+    law carries, recorded with every path (:data:`LAW_ATTRIBUTES`).
+    """
+
+    name: str
+    unit: str
+    meaning: str
+    option_help: str = ""
+    given: bool = True
+    recorded: bool = True
+
+
+#: Every law parameter name of the package: the one list the others derive from (the
+#: command line's options, the study schema, the path's attributes, the plots' keys).
+LAW_PARAMETERS = (
+    LawParameter(
+        "adhesion_length", "length", "ℓa = w/E*",
+        "ℓa = w/E* (length, > 0): w = ℓa x --modulus; instead of --work-of-adhesion.",
+        recorded=False,  # a law carries w; ℓa follows from w and E*
+    ),
+    LawParameter(
+        "work_of_adhesion", "pressure*length", "w (adhesive laws)",
+        "w (energy per area, units of E* x length).",
+    ),
+    LawParameter(
+        "range", "length", "the law's range (Δr, ρ or δ)",
+        "Δr (lj93smooth), ρ (exponential), cohesive width (dugdale).",
+    ),
+    LawParameter(
+        "stiffness", "pressure/length", "k = V''(a0) (Lennard-Jones walls)",
+        "lj93smooth site stiffness per area k = V''(a0) (default E*/(2 a0)).",
+    ),
+    # a0 of the Lennard-Jones walls is the pixel size (make_law's context), not a parameter
+    LawParameter(
+        "equilibrium_distance", "length", "a0 of the Lennard-Jones walls", given=False
+    ),
+    LawParameter(
+        "core_stiffness", "pressure/length", "soft core of the exponential law",
+        "exponential: soft repulsive core k_c for g < 0 (default: hard wall).",
+    ),
+)  # fmt: skip
+
+#: The law parameters make_law accepts, in the order they are checked and reported.
+PARAMETERS = tuple(p.name for p in LAW_PARAMETERS if p.given)
+#: The numeric members a law may have, as the results record them (:func:`law_parameters`).
+LAW_ATTRIBUTES = tuple(p.name for p in LAW_PARAMETERS if p.recorded)
 
 
 @dataclass(frozen=True)

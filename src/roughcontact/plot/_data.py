@@ -13,6 +13,7 @@ import math
 import numpy as np
 
 from .._validate import ParameterError
+from ..interactions.registry import PARAMETERS
 
 #: Parameters that describe one surface realisation and its substrate (Fig. 2 picks one).
 SURFACE_KEYS = (
@@ -31,14 +32,7 @@ SURFACE_KEYS = (
     "seed",
 )
 #: Parameters of the interaction (what varies between the curves of Fig. 2 and maps of Fig. 1).
-ADHESION_KEYS = (
-    "law",
-    "adhesion_length",
-    "work_of_adhesion",
-    "range",
-    "stiffness",
-    "core_stiffness",
-)
+ADHESION_KEYS = ("law", *PARAMETERS)  # the law and the registry's parameters
 #: Mathtext symbols (without the ``$``) of the parameters in titles, captions and keys.
 SYMBOLS = {
     "hurst": "H",

@@ -304,9 +304,11 @@ def provenance(heights, substrate, interaction) -> dict:
     half-space), ν, base ("" for a half-space), periodic (0 for a free boundary) and the
     kind tag ``substrate``; :func:`roughcontact.elastic.substrate_from_attrs` rebuilds it)
     and the interaction's parameters, each under its own key (units as in the rest of the
-    API).
+    API): those of the interaction registry's one list,
+    :data:`~roughcontact.interactions.registry.LAW_ATTRIBUTES`.
     """
     from .. import __version__
+    from ..interactions.registry import law_parameters
     from ..surfaces.statistics import short_cutoff_estimate, statistics
 
     a0 = substrate.pixel_size
@@ -330,17 +332,5 @@ def provenance(heights, substrate, interaction) -> dict:
         "substrate": kind_tag,
         "roughcontact_version": __version__,
     }
-    for key in _LAW_PARAMETERS:
-        value = getattr(interaction, key, None)
-        if isinstance(value, (int, float)) and not isinstance(value, bool):
-            attrs[key] = float(value)
+    attrs.update(law_parameters(interaction))  # the registry's recorded parameters
     return attrs
-
-
-_LAW_PARAMETERS = (
-    "work_of_adhesion",
-    "range",
-    "stiffness",
-    "equilibrium_distance",
-    "core_stiffness",
-)

@@ -33,6 +33,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from .._validate import ParameterError, json_ready, positive
+from ..spectra import mode_power, moments, separable_hann
 
 __all__ = [
     "CriterionInputs",
@@ -255,8 +256,9 @@ def inputs_from_heights(
 ) -> CriterionInputs:
     """:class:`CriterionInputs` measured on a height map.
 
-    ``M_k`` are sums over the discrete wavevectors of ``|FFT(h)|^2`` (spectral
-    derivatives; the mean removed), ``heights`` [length] on a grid of ``pixel_size``.
+    ``M_k`` are sums over the discrete wavevectors of ``|FFT(h)|^2``
+    (:func:`roughcontact.spectra.mode_power` and :func:`~roughcontact.spectra.moments`:
+    spectral derivatives; the mean removed), ``heights`` [length] on a grid of ``pixel_size``.
     ``periodic=False`` (a measured scan, a window of a larger surface): the mean plane is
     removed and a 2D Hann window applied, its power loss divided out, so that the edges
     do not add spurious short-wavelength power (the moments are then estimates).
@@ -271,13 +273,9 @@ def inputs_from_heights(
         i, j = np.meshgrid(np.arange(nx), np.arange(ny), indexing="ij")
         A = np.column_stack([i.ravel(), j.ravel(), np.ones(h.size)])
         h = h - (A @ np.linalg.lstsq(A, h.ravel(), rcond=None)[0]).reshape(h.shape)
-        window = np.outer(np.hanning(nx), np.hanning(ny))
+        window = separable_hann(h.shape)
         h = h * window / math.sqrt(float(np.mean(window**2)))
-    spec = np.abs(np.fft.fft2(h)) ** 2 / (nx * ny) ** 2
-    qx = 2 * np.pi * np.fft.fftfreq(nx, d=a)
-    qy = 2 * np.pi * np.fft.fftfreq(ny, d=a)
-    q = np.hypot(qx[:, None], qy[None, :])
-    m = {k: float(np.sum(q**k * spec)) for k in (0, 1, 2, 4)}
+    m = moments(*mode_power(h, (a, a)), orders=(0, 1, 2, 4))
     return _from_moments(
         m, contact_modulus=contact_modulus, work_of_adhesion=work_of_adhesion,
         interaction_range=interaction_range, hurst=hurst, youngs_modulus=youngs_modulus,

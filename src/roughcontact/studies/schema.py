@@ -112,11 +112,9 @@ SCHEMA = {
     },
     "interaction": {
         "law": _k(str, "one of " + ", ".join(LAWS), lambda v: v in LAWS, default=DEFAULT_LAW),
+        # the registry's parameters, each a positive number
+        **{k: _k(float, *_POS) for k in PARAMETERS},
         "adhesion_length": _k(float, "> 0; law = 'hardwall' for no adhesion", _POS[1]),
-        "work_of_adhesion": _k(float, *_POS),
-        "range": _k(float, *_POS),
-        "stiffness": _k(float, *_POS),
-        "core_stiffness": _k(float, *_POS),
     },
     "path": {
         "control": _k(str, "'offset' or 'load'", lambda v: v in UNITS, "offset", False),

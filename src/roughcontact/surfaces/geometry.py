@@ -108,6 +108,13 @@ def sphere(
     return np.sqrt(np.clip(R**2 - r2, 0.0, None)) - R
 
 
+def _wave(shape, wavelength, amplitude, pixel_size):
+    """The checked ``(nx, ny, wavelength, amplitude, pixel_size)`` of a periodic wave."""
+    nx, ny = shape2d("shape", shape)
+    lam = positive("wavelength", wavelength)
+    return nx, ny, lam, _finite("amplitude", amplitude), PIXEL_SIZE.check("pixel_size", pixel_size)
+
+
 def sinusoid(
     shape,
     wavelength: float,
@@ -140,11 +147,9 @@ def sinusoid(
     Returns
     -------
     ndarray of float64, shape (nx, ny)
+        Heights h [length], constant along the axis other than ``axis``.
     """
-    nx, ny = shape2d("shape", shape)
-    lam = positive("wavelength", wavelength)
-    A = _finite("amplitude", amplitude)
-    a = PIXEL_SIZE.check("pixel_size", pixel_size)
+    nx, ny, lam, A, a = _wave(shape, wavelength, amplitude, pixel_size)
     if axis not in (0, 1) or isinstance(axis, bool):
         raise ParameterError(f"axis must be 0 or 1, got {axis!r}")
     n = (nx, ny)[axis]
@@ -172,11 +177,9 @@ def egg_box(shape, wavelength: float, amplitude: float, *, pixel_size: float = 1
     Returns
     -------
     ndarray of float64, shape (nx, ny)
+        Heights h [length], summits at the grid origin and its periodic images.
     """
-    nx, ny = shape2d("shape", shape)
-    lam = positive("wavelength", wavelength)
-    A = _finite("amplitude", amplitude)
-    a = PIXEL_SIZE.check("pixel_size", pixel_size)
+    nx, ny, lam, A, a = _wave(shape, wavelength, amplitude, pixel_size)
     _check_divides("wavelength", lam, nx * a, 0)
     _check_divides("wavelength", lam, ny * a, 1)
     x, y = _coordinates(nx, ny, a)

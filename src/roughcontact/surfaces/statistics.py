@@ -9,7 +9,9 @@ where both neighbours lie inside the window.
 Two ways of taking derivatives are offered:
 
 ``method="spectral"`` (default)
-    Derivatives of the trigonometric interpolant of the samples, evaluated on the grid.
+    Derivatives of the trigonometric interpolant of the samples, evaluated on the grid:
+    the periodic case of the package's one spectrum definition,
+    :func:`roughcontact.spectra.periodic_moments`.
     With the unnormalised DFT ``H(q) = sum_x h(x) exp(-i q.x)`` and ``N = nx*ny``
     (Parseval)::
 
@@ -39,7 +41,8 @@ Two ways of taking derivatives are offered:
     as a spurious slope) and is refused for a window.
 
 The power spectrum follows Persson's convention (B. N. J. Persson et al.,
-J. Phys.: Condens. Matter 17, R1 (2005)), see :func:`power_spectrum`.
+J. Phys.: Condens. Matter 17, R1 (2005)), see :func:`power_spectrum`: the periodic,
+unwindowed, linearly binned case of :mod:`roughcontact.spectra`.
 
 References
 ----------
@@ -56,8 +59,16 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
-from .._backend import array_device, array_namespace, is_cupy_array, is_numpy_array, rfft2, to_numpy
+from .._backend import array_namespace, to_numpy
 from .._validate import PIXEL_SIZE, ParameterError, heights2d
+from ..spectra import (
+    bin_modes,
+    linear_edges,
+    mode_cell,
+    mode_power,
+    periodic_moments,
+    wavevectors,
+)
 
 __all__ = [
     "SurfaceStatistics",
@@ -125,64 +136,10 @@ def _check_method(method: str | None, periodic: bool) -> str:
     return method
 
 
-def _like(values, xp, like):
-    """Host ``values`` as an array of ``like``'s namespace, on its device."""
-    if like is None or is_numpy_array(like):
-        return values
-    if is_cupy_array(like):
-        with like.device:  # CuPy allocates on the current GPU
-            return xp.asarray(values)
-    return xp.asarray(values, device=array_device(like))
-
-
-def _wavevectors(xp, nx: int, ny: int, pixel_size: float, like):
-    """Wavevectors of the rfft2 layout (shape (nx, 1) and (1, ny//2+1)) and Parseval weights.
-
-    Returns ``qx, qy`` (full), ``qx1, qy1`` (first-derivative wavevectors, Nyquist set
-    to zero) and ``weights`` counting each rfft mode for itself and its mirror image.
-    """
-    # built on the host and moved once: array_api_compat's fftfreq/rfftfreq take no
-    # device but "cpu" (a CuPy array's device raised "Unsupported device"), and these
-    # are O(n) values
-    qx = 2 * math.pi * np.fft.fftfreq(nx, d=pixel_size)
-    qy = 2 * math.pi * np.fft.rfftfreq(ny, d=pixel_size)
-    qx1, qy1 = qx.copy(), qy.copy()
-    if nx % 2 == 0:
-        qx1[nx // 2] = 0.0
-    if ny % 2 == 0:
-        qy1[ny // 2] = 0.0
-    # rfft keeps ky >= 0; modes 0 < ky < ny/2 stand for themselves and their mirror.
-    wy = np.full(qy.shape, 2.0)
-    wy[0] = 1.0
-    if ny % 2 == 0:
-        wy[ny // 2] = 1.0
-    qx, qy, qx1, qy1, wy = (_like(v, xp, like) for v in (qx, qy, qx1, qy1, wy))
-    return (
-        xp.reshape(qx, (nx, 1)),
-        xp.reshape(qy, (1, -1)),
-        xp.reshape(qx1, (nx, 1)),
-        xp.reshape(qy1, (1, -1)),
-        xp.reshape(wy, (1, -1)),
-    )
-
-
-def _spectral_moments(h, pixel_size: float) -> tuple[float, float, float]:
-    """Return ``(<(h-<h>)^2>, <|grad h|^2>, <(lap h)^2>)`` by Parseval on the rfft."""
-    xp = array_namespace(h)
-    nx, ny = h.shape
-    n = nx * ny
-    H = rfft2(h)
-    qx, qy, qx1, qy1, w = _wavevectors(xp, nx, ny, pixel_size, h)
-    p = w * xp.real(H * xp.conj(H)) / float(n) ** 2
-    m0 = float(xp.sum(p)) - float(p[0, 0])
-    m2 = float(xp.sum((qx1**2 + qy1**2) * p))
-    m4 = float(xp.sum((qx**2 + qy**2) ** 2 * p))
-    return max(m0, 0.0), m2, m4
-
-
 def _fd_moments(h, pixel_size: float, periodic: bool) -> tuple[float, float, float]:
-    """Same as :func:`_spectral_moments` with central / 5-point differences: wrapping
-    around a period, or on a window only where the stencil fits inside the map."""
+    """Same as :func:`roughcontact.spectra.periodic_moments` with central / 5-point
+    differences: wrapping around a period, or on a window only where the stencil fits
+    inside the map."""
     xp = array_namespace(h)
     a = pixel_size
     hm = h - xp.mean(h)
@@ -216,7 +173,7 @@ def _moments(heights, pixel_size, method, periodic=True):
     # they come out inf, without warnings, and print as null in JSON
     with np.errstate(over="ignore", invalid="ignore"):
         if method == "spectral":
-            return _spectral_moments(h, a)
+            return periodic_moments(h, a)
         return _fd_moments(h, a, periodic)
 
 
@@ -344,25 +301,12 @@ def power_spectrum(
         nbins = max(1, min(nx, ny) // 2)
     if isinstance(nbins, bool) or not isinstance(nbins, (int, np.integer)) or nbins < 1:
         raise ParameterError(f"nbins must be an integer >= 1, got {nbins!r}")
-    Lx, Ly = nx * a, ny * a
-    import scipy.fft
-
-    H = scipy.fft.fft2(h)
-    C = a**4 * np.abs(H) ** 2 / ((2 * np.pi) ** 2 * Lx * Ly)
-    qx = 2 * np.pi * np.fft.fftfreq(nx, d=a)
-    qy = 2 * np.pi * np.fft.fftfreq(ny, d=a)
-    q = np.hypot(qx[:, None], qy[None, :])
+    q, p = mode_power(h, (a, a))
+    C = p / mode_cell(h.shape, (a, a))
     q, C = q.ravel()[1:], C.ravel()[1:]  # drop q = 0 (index 0 in fft layout)
-    edges = np.linspace(0.0, q.max(), int(nbins) + 1)
-    idx = np.clip(np.searchsorted(edges, q, side="right") - 1, 0, int(nbins) - 1)
-    counts = np.bincount(idx, minlength=int(nbins))
-    qsum = np.bincount(idx, weights=q, minlength=int(nbins))
-    csum = np.bincount(idx, weights=C, minlength=int(nbins))
-    keep = counts > 0
-    qb = qsum[keep] / counts[keep]
-    Cb = csum[keep] / counts[keep]
+    qb, Cb, counts = bin_modes(q, C, linear_edges(q.max(), nbins))
     if return_counts:
-        return qb, Cb, counts[keep]
+        return qb, Cb, counts
     return qb, Cb
 
 
@@ -379,8 +323,6 @@ def short_cutoff_estimate(heights, *, pixel_size: float = 1.0, rtol: float = 1e-
     a0 = PIXEL_SIZE.check("pixel_size", pixel_size)
     nx, ny = h.shape
     power = np.abs(np.fft.rfft2(h - h.mean())) ** 2
-    q = np.hypot(
-        2 * np.pi * np.fft.fftfreq(nx, d=a0)[:, None], 2 * np.pi * np.fft.rfftfreq(ny, d=a0)[None]
-    )
+    q = np.hypot(wavevectors(nx, a0)[:, None], wavevectors(ny, a0, real=True)[None])
     present = power > rtol * power.max() if power.max() > 0 else np.zeros_like(power, bool)
     return float(2 * np.pi / q[present].max()) if present.any() else math.inf

@@ -66,7 +66,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validate import ParameterError, positive
+from .._validate import ParameterError, nonnegative, positive
 from .westergaard import westergaard_full_contact_pressure
 
 __all__ = [
@@ -119,16 +119,6 @@ def johnson_parameter(*, amplitude, wavelength, contact_modulus, work_of_adhesio
     return math.sqrt(2.0 * lam * w / (math.pi**2 * E * D * D))
 
 
-def _alpha(name, value) -> float:
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise ParameterError(f"{name} must be a number >= 0, got {value!r}") from None
-    if not (v >= 0) or math.isinf(v):
-        raise ParameterError(f"{name} must be finite and >= 0, got {value!r}")
-    return v
-
-
 def _contact_half_width(name, value, lam):
     try:
         a = np.asarray(value, dtype=float)
@@ -167,7 +157,7 @@ def johnson_sinusoid_mean_pressure(
     """
     lam = positive("wavelength", wavelength)
     p_star = westergaard_full_contact_pressure(amplitude, lam, contact_modulus)
-    w = _alpha("work_of_adhesion", work_of_adhesion)
+    w = nonnegative("work_of_adhesion", work_of_adhesion)
     alpha = (
         0.0
         if w == 0
@@ -234,7 +224,7 @@ def johnson_sinusoid_pressure(
     lam = positive("wavelength", wavelength)
     p_star = westergaard_full_contact_pressure(amplitude, lam, contact_modulus)
     E = positive("contact_modulus", contact_modulus)
-    w = _alpha("work_of_adhesion", work_of_adhesion)
+    w = nonnegative("work_of_adhesion", work_of_adhesion)
     a = float(_contact_half_width("contact_half_width", contact_half_width, lam))
     x = np.asarray(x, dtype=float)
     s2 = math.sin(math.pi * a / lam) ** 2
@@ -299,7 +289,7 @@ def johnson_sinusoid_thresholds(alpha) -> JohnsonSinusoidThresholds:
     """
     from scipy.optimize import brentq  # scipy on first use: import roughcontact stays light
 
-    al = _alpha("alpha", alpha)
+    al = nonnegative("alpha", alpha)
     if al >= JOHNSON_ALPHA_MAX:
         raise ParameterError(
             f"alpha must be in [0, {JOHNSON_ALPHA_MAX:.6f}) for a stable partial contact to "
@@ -343,4 +333,4 @@ def johnson_sinusoid_pull_off_pressure(
 
 def johnson_sinusoid_spontaneous_full_contact(alpha) -> bool:
     """True if the surfaces jump into full contact at zero load: ``alpha >= 3^(3/4)/4``."""
-    return _alpha("alpha", alpha) >= JOHNSON_FULL_CONTACT_ALPHA
+    return nonnegative("alpha", alpha) >= JOHNSON_FULL_CONTACT_ALPHA

@@ -60,7 +60,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validate import ParameterError, json_ready, positive
+from .._validate import JsonRecord, ParameterError, positive
 from .._validate import positive_array as _pos
 
 __all__ = [
@@ -267,7 +267,7 @@ def necessary_condition_verdict(met: bool, reason: str) -> str:
 
 
 @dataclass(frozen=True)
-class PastewkaRobbinsPrediction:
+class PastewkaRobbinsPrediction(JsonRecord):
     """Everything the theory predicts for one surface and interaction (see :func:`predict`).
 
     The inputs (``rms_slope``, ``d_rep`` as used, ``interaction_range``,
@@ -304,10 +304,6 @@ class PastewkaRobbinsPrediction:
     sticky: bool
     threshold_adhesion_length: float
     necessary_condition_met: bool
-
-    def to_dict(self) -> dict:
-        """JSON-ready dict; non-finite numbers become ``None``."""
-        return json_ready(self)
 
 
 def predict(

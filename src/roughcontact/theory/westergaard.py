@@ -24,7 +24,7 @@ import math
 
 import numpy as np
 
-from .._validate import ParameterError, positive
+from .._validate import nonnegative, positive
 
 __all__ = [
     "westergaard_contact_fraction",
@@ -34,32 +34,11 @@ __all__ = [
 ]
 
 
-def _nonnegative(name: str, value) -> float:
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise ParameterError(f"{name} must be a number >= 0, got {value!r}") from None
-    if not (v >= 0) or math.isinf(v):
-        raise ParameterError(f"{name} must be finite and >= 0, got {value!r}")
-    return v
-
-
 def westergaard_full_contact_pressure(amplitude, wavelength, contact_modulus) -> float:
-    """Mean pressure for full contact, ``p* = pi E* Delta / lambda`` (Johnson 1985, 13.2).
+    """Mean pressure for full contact, ``p* = pi E* Delta / lambda`` [pressure] (Johnson
+    1985, 13.2).
 
-    Parameters
-    ----------
-    amplitude : float
-        Delta > 0 [length].
-    wavelength : float
-        lambda > 0 [length].
-    contact_modulus : float
-        E* > 0 [pressure].
-
-    Returns
-    -------
-    float
-        p* [pressure].
+    Parameters as in :func:`westergaard_pressure`.
     """
     D = positive("amplitude", amplitude)
     lam = positive("wavelength", wavelength)
@@ -75,7 +54,7 @@ def westergaard_contact_half_width(mean_pressure, amplitude, wavelength, contact
     """
     lam = positive("wavelength", wavelength)
     p_star = westergaard_full_contact_pressure(amplitude, lam, contact_modulus)
-    pbar = _nonnegative("mean_pressure", mean_pressure)
+    pbar = nonnegative("mean_pressure", mean_pressure)
     if pbar >= p_star:
         return lam / 2
     return lam / math.pi * math.asin(math.sqrt(pbar / p_star))
@@ -120,7 +99,7 @@ def westergaard_pressure(x, mean_pressure, amplitude, wavelength, contact_modulu
     """
     lam = positive("wavelength", wavelength)
     p_star = westergaard_full_contact_pressure(amplitude, lam, contact_modulus)
-    pbar = _nonnegative("mean_pressure", mean_pressure)
+    pbar = nonnegative("mean_pressure", mean_pressure)
     x = np.asarray(x, dtype=float)
     if pbar >= p_star:
         p = pbar + p_star * np.cos(2 * np.pi * x / lam)

@@ -18,9 +18,9 @@ adds to the measured moments::
 
 References
 ----------
-B. N. J. Persson et al., J. Phys.: Condens. Matter 17, R1 (2005).
-T. D. B. Jacobs, T. Junge and L. Pastewka, Surf. Topogr.: Metrol. Prop. 5, 013001 (2017).
-L. Pastewka and M. O. Robbins, PNAS 111, 3298 (2014), Eqs. 1, 8, 9.
+Those of :mod:`roughcontact.spectra`: the PSD convention (Persson et al. 2005), the
+self-affine fit and its reliable range (Jacobs, Junge & Pastewka 2017), the slope and
+curvature at the short cutoff (Pastewka & Robbins 2014, Eqs. 1, 8, 9).
 """
 
 from __future__ import annotations

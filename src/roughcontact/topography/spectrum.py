@@ -2,6 +2,10 @@ r"""Fourier modes, windows, binned power spectra, scale-dependent rms slope and 
 
 Everything here works on measured height data in SI units (heights and pixel sizes in m):
 a 2D map ``heights[i, j]`` at ``x = i dx, y = j dy`` or a 1D profile ``heights[i]``.
+The modes, their normalisation, the windows and the bins are those of
+:mod:`roughcontact.spectra`, the package's one definition of the spectrum; this module
+adds the measured-data front end (checks, per-axis pixel sizes, log bins, cumulative
+moments by scale).
 :mod:`roughcontact.topography.statistics` builds on these (with the Hurst fit of
 :mod:`roughcontact.topography.hurst`) and re-exports every public name.
 
@@ -50,12 +54,20 @@ T. D. B. Jacobs, T. Junge and L. Pastewka, Surf. Topogr.: Metrol. Prop. 5, 01300
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from .._validate import ParameterError, positive, real_array
+from ..spectra import (
+    bin_modes,
+    hann_1d,
+    log_edges,
+    mode_cell,
+    mode_power,
+    radial_hann,
+    window_efficiency,
+)
 
 __all__ = [
     "PowerSpectrum",
@@ -95,25 +107,6 @@ def _grid(heights, pixel_size):
     return h, sizes
 
 
-def _hann_1d(n: int) -> np.ndarray:
-    """SciPy's periodic Hann window of n points, scaled to a mean square of 1."""
-    from scipy.signal import get_window
-
-    w = get_window("hann", n)
-    return w * math.sqrt(n / float(np.sum(w * w)))
-
-
-def _radial_hann(shape, sizes) -> np.ndarray:
-    """The rotationally symmetric Hann window of a map, scaled to a mean square of 1."""
-    nx, ny = shape
-    x = sizes[0] * (np.arange(nx) - nx // 2)
-    y = sizes[1] * (np.arange(ny) - ny // 2)
-    r = np.hypot(x[:, None], y[None, :])
-    r_max = min(nx * sizes[0], ny * sizes[1]) / 2
-    w = np.where(r <= r_max, 0.5 + 0.5 * np.cos(np.pi * r / r_max), 0.0)
-    return w * math.sqrt(w.size / float(np.sum(w * w)))
-
-
 def _windowed(h, sizes, periodic, *, profiles=False):
     """Mean-free heights times the window; the window's name and efficiency.
 
@@ -127,12 +120,12 @@ def _windowed(h, sizes, periodic, *, profiles=False):
     if periodic:
         return h, "none (periodic)", 1.0
     if h.ndim == 1 or profiles:
-        w, name = _hann_1d(h.shape[0]), "hann"
+        w, name = hann_1d(h.shape[0]), "hann"
         hw = h * (w if h.ndim == 1 else w[:, None])
     else:
-        w, name = _radial_hann(h.shape, sizes), "hann (radial)"
+        w, name = radial_hann(h.shape, sizes), "hann (radial)"
         hw = h * w
-    return hw, name, 1.0 / float(np.mean(w**4))
+    return hw, name, window_efficiency(w)
 
 
 @dataclass(frozen=True)
@@ -161,20 +154,10 @@ def _modes(h, sizes, periodic, *, profiles=False):
     """The :class:`_Modes` of a map (2D FFT) or of profiles along x (1D FFT, averaged
     over a map's lines when ``profiles``), and the windowed heights."""
     hw, window, eff = _windowed(h, sizes, periodic, profiles=profiles)
-    nx = h.shape[0]
-    if h.ndim == 2 and not profiles:
-        ny = h.shape[1]
-        p = (np.abs(np.fft.fft2(hw)) ** 2).ravel() / float(nx * ny) ** 2
-        qx = 2 * np.pi * np.fft.fftfreq(nx, d=sizes[0])
-        qy = 2 * np.pi * np.fft.fftfreq(ny, d=sizes[1])
-        q = np.hypot(qx[:, None], qy[None, :]).ravel()
-        cell, dim = (2 * np.pi / (nx * sizes[0])) * (2 * np.pi / (ny * sizes[1])), 2
-    else:
-        p = np.abs(np.fft.fft(hw, axis=0)) ** 2 / float(nx) ** 2
-        if p.ndim == 2:
-            p = p.mean(axis=1)
-        q = np.abs(2 * np.pi * np.fft.fftfreq(nx, d=sizes[0]))
-        cell, dim = 2 * np.pi / (nx * sizes[0]), 1
+    q, p = mode_power(hw, sizes, profiles=profiles)
+    q, p = q.ravel(), p.ravel()
+    dim = 2 if h.ndim == 2 and not profiles else 1
+    cell = mode_cell(h.shape[:dim], sizes)
     order = np.argsort(q, kind="stable")
     q, p = q[order], p[order]
     keep = q > 0
@@ -233,15 +216,8 @@ class PowerSpectrum:
 def _binned(modes: _Modes, points_per_decade: int) -> PowerSpectrum:
     ppd = _points_per_decade(points_per_decade)
     q, c = modes.q, modes.p / modes.cell
-    lo, hi = float(q[0]), float(q[-1])
-    nb = max(1, math.ceil(math.log10(hi / lo) * ppd)) if hi > lo else 1
-    edges = np.geomspace(lo, hi, nb + 1)
-    idx = np.clip(np.searchsorted(edges, q, side="right") - 1, 0, nb - 1)
-    counts = np.bincount(idx, minlength=nb)
-    keep = counts > 0
-    qb = np.bincount(idx, weights=q, minlength=nb)[keep] / counts[keep]
-    cb = np.bincount(idx, weights=c, minlength=nb)[keep] / counts[keep]
-    return PowerSpectrum(q=qb, psd=cb, counts=counts[keep], dim=modes.dim, cell=modes.cell,
+    qb, cb, counts = bin_modes(q, c, log_edges(float(q[0]), float(q[-1]), ppd))
+    return PowerSpectrum(q=qb, psd=cb, counts=counts, dim=modes.dim, cell=modes.cell,
                          window=modes.window, efficiency=modes.efficiency)  # fmt: skip
 
 

@@ -20,9 +20,8 @@ for profiles and says so (``isotropy_assumed``).
 
 References
 ----------
-B. N. J. Persson et al., J. Phys.: Condens. Matter 17, R1 (2005).
-T. D. B. Jacobs, T. Junge and L. Pastewka, Surf. Topogr.: Metrol. Prop. 5, 013001 (2017).
-L. Pastewka and M. O. Robbins, PNAS 111, 3298 (2014), Eqs. 1, 8, 9.
+Those of :mod:`roughcontact.spectra` (Persson et al. 2005; Jacobs, Junge & Pastewka
+2017; Pastewka & Robbins 2014); for profiles P. R. Nayak, J. Lubr. Technol. 93, 398 (1971).
 """
 
 from __future__ import annotations

@@ -14,6 +14,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from _helpers import cli_one_line_error
 from click.testing import CliRunner
 
 from roughcontact.cli.main import main
@@ -42,14 +43,6 @@ def header_pixel_size(path: str) -> float:
 
 def invoke(*args):
     return CliRunner().invoke(main, [str(a) for a in args])
-
-
-def one_line_error(r, *words):
-    assert r.exit_code == 2, (r.exit_code, r.output, r.exception)
-    lines = [line for line in r.stderr.splitlines() if line.strip()]
-    assert len(lines) == 1 and lines[0].startswith("roughcontact: error:"), r.stderr
-    for word in words:
-        assert word in lines[0], (word, lines[0])
 
 
 def test_contact_on_an_afm_scan_in_metres():
@@ -85,7 +78,7 @@ def test_channel_by_name_and_index_agree():
 
 def test_pixel_size_conflict_and_agreement():
     path = data_file("nid-1.nid")
-    one_line_error(
+    cli_one_line_error(
         invoke("contact", path, "--offset", "1", "--pixel-size", "1"), "--pixel-size", "7.8125e-08"
     )
     r = invoke("contact", path, "--offset", "1", "--pixel-size", "7.8125e-08")
@@ -93,14 +86,14 @@ def test_pixel_size_conflict_and_agreement():
 
 
 def test_bad_surfaces_are_one_line_errors(tmp_path):
-    one_line_error(
+    cli_one_line_error(
         invoke("contact", data_file("di-1.di"), "--offset", "1", "--channel", "Topo"),
         "'Topo'",
         "0 'Height', 1 'Height', 2 'Phase'",
     )
-    one_line_error(invoke("contact", data_file("dektak-1.csv"), "--offset", "1"), "line scan")
+    cli_one_line_error(invoke("contact", data_file("dektak-1.csv"), "--offset", "1"), "line scan")
     np.save(tmp_path / "s.npy", np.ones((4, 4)))
-    one_line_error(
+    cli_one_line_error(
         invoke("path", tmp_path / "s.npy", "--loads", "1", "2", "1", "-o", tmp_path / "p.nc",
                "--channel", "1"),
         "channel",
