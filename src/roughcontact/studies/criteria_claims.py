@@ -338,7 +338,8 @@ def _by_parameter_set(ds, per) -> list[dict]:
 
 # ------------------------------------------------------------------------ the report
 def _n(x, digits=3) -> str:
-    if x is None or (isinstance(x, float) and not math.isfinite(x)):
+    # "nan": a parameter-set label of a parameter the study does not set (aggregate._plain)
+    if x is None or x == "nan" or (isinstance(x, float) and not math.isfinite(x)):
         return "—"
     return f"{x:.{digits}g}"
 
