@@ -72,6 +72,13 @@ def with_fields(ds, extra: dict):
     return add_fields(ds, extra)
 
 
+#: The task parameters of its surface (:func:`roughcontact.self_affine`) and substrate
+#: (:class:`roughcontact.Substrate`).
+_SURFACE = ("hurst", "rms_slope", "rms_height", "short_cutoff", "long_cutoff", "rolloff",
+            "pixel_size", "seed")  # fmt: skip
+_SUBSTRATE = ("contact_modulus", "pixel_size", "thickness", "poisson", "base")
+
+
 def task_inputs(params: dict, path_settings: dict):
     """The surface, substrate, law and path values of a task's parameters.
 
@@ -84,28 +91,10 @@ def task_inputs(params: dict, path_settings: dict):
     from ..elastic import Substrate
     from ..surfaces import self_affine
 
-    p = params
-    n = p["size"]
-    heights = self_affine(
-        (n, n),
-        hurst=p["hurst"],
-        rms_slope=p["rms_slope"],
-        rms_height=p["rms_height"],
-        short_cutoff=p["short_cutoff"],
-        long_cutoff=p["long_cutoff"],
-        rolloff=p["rolloff"],
-        pixel_size=p["pixel_size"],
-        seed=p["seed"],
-    )
-    substrate = Substrate(
-        (n, n),
-        contact_modulus=p["contact_modulus"],
-        pixel_size=p["pixel_size"],
-        thickness=p["thickness"],
-        poisson=p["poisson"],
-        base=p["base"],
-        periodic=p.get("periodic", True),
-    )
+    p, n = params, params["size"]
+    # the parameters carry the names of the keywords they are passed as
+    heights = self_affine((n, n), **{k: p[k] for k in _SURFACE})
+    substrate = Substrate((n, n), **{k: p[k] for k in _SUBSTRATE}, periodic=p.get("periodic", True))
     law = make_interaction(p)
     return heights, substrate, law, path_values(path_settings, heights, law, p)
 

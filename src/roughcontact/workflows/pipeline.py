@@ -211,20 +211,13 @@ def run_path(
     loads=None,
     offset_unit: str = "absolute",
     lead_in=None,
-    retract: bool = True,
-    tol=None,
-    max_iter: int = 5000,
-    fields_at=(),
     fields_at_area=(),
     until_area=None,
-    jump_factor: float = 2.0,
     progress=None,
     device=None,
-    dtype=None,
-    checkpoint=None,
-    checkpoint_seconds: float = 60.0,
     analysis=None,
     keep_partial: bool = False,
+    **options,
 ) -> PathRun:
     """Follow a quasi-static path on a surface and (optionally) analyse it.
 
@@ -245,15 +238,20 @@ def run_path(
         or relative to the first contact ``max(h) + d0``.
     lead_in : sequence of float, optional
         Offsets (length above the first contact) followed before ``offsets``.
-    retract, tol, max_iter, fields_at, until_area, jump_factor, device, dtype, checkpoint, \
-checkpoint_seconds
-        As for :func:`roughcontact.approach_retract` (tol: largest force imbalance per
-        site, units of E*; checkpoint_seconds: s).
     fields_at_area : sequence of float
         Repulsive areas A_rep/A0: the fields of the approach state nearest each are kept
         (:class:`AreaFields`) and added to the path.
+    until_area : float, optional
+        End the approach at the first state with A_rep/A0 >= ``until_area``, in (0, 1]
+        (:func:`roughcontact.approach_retract`).
     progress : callable, optional
         ``progress(step, n_steps, result)`` after every step.
+    device : {None, "cpu", "cuda", "cuda:N"}, optional
+        Where the path, and the analysis's hard-wall reference, compute.
+    **options
+        The other options of :func:`roughcontact.approach_retract`, with its defaults:
+        ``retract``, ``tol`` (largest force imbalance per site, units of E*), ``max_iter``,
+        ``fields_at``, ``jump_factor``, ``dtype``, ``checkpoint``, ``checkpoint_seconds`` (s).
     analysis : mapping, optional
         Analyse the path with :func:`~roughcontact.analysis.path_analysis.analyze_path`
         and these options (``{}``: its defaults), on the path's heights, substrate and
@@ -291,24 +289,9 @@ checkpoint_seconds
         progress = _both(nearest, progress)
     t0, error = time.perf_counter(), ""
     try:
-        ds = approach_retract(
-            heights,
-            substrate,
-            interaction,
-            offsets=offsets,
-            loads=loads,
-            retract=retract,
-            tol=tol,
-            max_iter=max_iter,
-            fields_at=fields_at,
-            jump_factor=jump_factor,
-            progress=progress,
-            device=device,
-            dtype=dtype,
-            checkpoint=checkpoint,
-            checkpoint_seconds=checkpoint_seconds,
-            until_area=until_area,
-        )
+        ds = approach_retract(heights, substrate, interaction, offsets=offsets, loads=loads,
+                              until_area=until_area, progress=progress, device=device,
+                              **options)  # fmt: skip
     except PathError as err:
         if not keep_partial:
             raise
