@@ -41,6 +41,7 @@ from .surfaces import (
     statistics,
 )
 from .topography import load_topography, stick
+from .workflows import run_path
 
 __version__ = "0.1.0"
 
@@ -71,6 +72,7 @@ __all__ = [
     "polonsky_keer",
     "power_spectrum",
     "relative_offsets",
+    "run_path",
     "save_heights",
     "self_affine",
     "sinusoid",

@@ -3,7 +3,6 @@ a NetCDF file with checkpoints."""
 
 from __future__ import annotations
 
-import math
 import sys
 
 import click
@@ -157,7 +156,8 @@ def path(
     """
     import numpy as np
 
-    from ..solvers import PathError, PathInterrupted, approach_retract
+    from ..solvers import PathError, PathInterrupted
+    from ..workflows.pipeline import run_path
 
     default_approach = None
     if offsets is None and loads is None and until_area is not None:
@@ -180,7 +180,7 @@ def path(
     if until_area is not None and not (0 < until_area <= 1):
         raise ParameterError(f"--until-area must be in (0, 1] (A_rep/A0), got {until_area:g}")
     start, stop, step = offsets if offsets is not None else loads
-    values = _path_values(option, start, stop, step)
+    given = _path_values(option, start, stop, step)  # in --offset-unit
     check_writable(output, "-o/--output")  # before any work, not at the first checkpoint
     if offset_unit == "bearing_area" and not (0 <= start <= 1 and 0 <= stop <= 1):
         raise ParameterError(
@@ -192,21 +192,15 @@ def path(
     law = _make_interaction(
         interaction, work, range_, stiffness, core_stiffness, modulus, pixel_size, adhesion_length
     )
-    if offsets is not None and offset_unit != "absolute":
-        from ..solvers.offsets import relative_offsets
-
-        given, values = values, relative_offsets(h, values, offset_unit, law, pixel_size)
-    else:
-        given = values
     from tqdm import tqdm
 
-    bar = tqdm(
-        unit="step",
-        disable=None if not as_json else True,  # only on a terminal, never with --json
-        file=sys.stderr,
-    )
+    bars = []  # made at the first step: a refused input shows no empty bar
 
     def show(i, n, res):
+        if not bars:
+            # only on a terminal, never with --json
+            bars.append(tqdm(unit="step", disable=None if not as_json else True, file=sys.stderr))
+        bar = bars[0]
         bar.total = n
         bar.set_postfix_str(
             f"d={res.offset:.4f} N/A0={res.load:.3e} Arep={res.repulsive_area:.4f} "
@@ -215,7 +209,14 @@ def path(
         )
         bar.update(1)
 
-    kwargs = {"offsets": values} if offsets is not None else {"loads": values}
+    def close():
+        for bar in bars:
+            bar.close()
+
+    if offsets is not None:
+        kwargs = {"offsets": given, "offset_unit": offset_unit}
+    else:
+        kwargs = {"loads": given}
     saved = {"steps": None}  # steps in the last file this run wrote
 
     def save(partial):
@@ -226,14 +227,14 @@ def path(
             with deferred():
                 _write_path(partial, output, surface_file)
         except WriteError as err:
-            bar.close()
+            close()
             kept = saved["steps"]
             kept = f"; it holds the {kept} steps of the last checkpoint" if kept else ""
             _fail(f"{err}{kept}", EXIT_FAILURE)
         saved["steps"] = int(partial.sizes["step"])
 
     try:
-        ds = approach_retract(
+        run = run_path(
             h,
             sub,
             law,
@@ -250,26 +251,18 @@ def path(
             **kwargs,
         )
     except (PathError, PathInterrupted) as err:
-        bar.close()
+        close()
         save(err.partial)
         done = f"the {err.partial.sizes['step']} steps before it are in {output}"
         code = exit_code(err) if isinstance(err, PathInterrupted) else EXIT_FAILURE
         why = "terminated (SIGTERM): " if code == EXIT_TERMINATED else ""
         _fail(f"{why}{err} ({done})", code)
-    bar.close()
+    close()
+    ds = run.path
     if offsets is not None:
         ds.attrs["offset_unit"] = offset_unit
     save(ds)
-    pull_off = float(ds.attrs["pull_off"])
-    summary = {
-        "pull_off": pull_off if math.isfinite(pull_off) else None,
-        "steps": int(ds.sizes["step"]),
-        "all_converged": bool(ds.attrs["all_converged"]),
-        "solve_seconds": float(ds["solve_seconds"].sum()),
-        "jumps": [int(i) for i in np.flatnonzero(ds["jump"].values)],
-        "output": str(output),
-        "periodic": sub.periodic,
-    }
+    summary = {**run.summary(), "output": str(output), "periodic": sub.periodic}
     if default_approach is not None:
         summary["approach"] = default_approach  # a choice made for the user: said so
     if surface is not None:

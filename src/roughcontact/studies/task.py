@@ -1,10 +1,10 @@
 """One task of a study, run on a worker: surface → substrate → law → path → analysis.
 
 One task = one surface realisation × one parameter set × its whole path: generate the
-surface, build the substrate and the interaction, follow the approach (and retraction)
-with :func:`roughcontact.approach_retract` and analyse it with
-:func:`roughcontact.analysis.path_analysis.analyze_path`. The result is the path dataset
-with the task's provenance in its attributes; it is written by the driver (:mod:`.store`).
+surface, build the substrate and the interaction (:func:`task_inputs`), then follow the
+approach (and retraction) and analyse it with :func:`roughcontact.run_path`. The result is
+the path dataset with the task's provenance in its attributes; it is written by the
+driver (:mod:`.store`).
 """
 
 from __future__ import annotations
@@ -18,15 +18,15 @@ import traceback
 
 import numpy as np
 
-from .._backend import to_numpy
-from .._validate import ParameterError
-from ..analysis.contact_geometry import area_fraction
 from ..pathdata import FIELDS, add_fields
+from ..workflows.pipeline import AreaFields, approach_offsets
 from .schema import make_interaction
 from .spec import Task
 from .store import PARAMETERS_ATTR
 
 __all__ = ["AreaFields", "compute_task", "path_values", "run_task", "with_fields"]
+# AreaFields lives in roughcontact.workflows.pipeline (run_path keeps the fields); the name
+# stays importable from here
 
 
 def path_values(path: dict, heights, law, params: dict) -> np.ndarray:
@@ -54,58 +54,12 @@ def path_values(path: dict, heights, law, params: dict) -> np.ndarray:
 
         values = stepped_values(path["start"], path["stop"], path["step"], name="[path]")
     if path["control"] == "offset":
-        from ..solvers.offsets import relative_offsets
-
         a0 = params["pixel_size"]
-        lead_in = relative_offsets(heights, path["lead_in"], "length", law, a0)
-        offsets = relative_offsets(heights, values, path["unit"], law, a0)
-        return np.concatenate((lead_in, offsets))
+        return approach_offsets(heights, values, path["unit"], law, a0, path["lead_in"])
     a0, periodic = params["pixel_size"], params.get("periodic", True)
     stats = statistics(heights, pixel_size=a0, periodic=periodic)
     scale = stats.rms_slope if path["unit"] == "rms_slope_modulus" else 1.0
     return values * scale * params["contact_modulus"]
-
-
-class AreaFields:
-    """Progress callback that keeps the fields of the approach states nearest given areas.
-
-    For each target A_rep/A0 the approach step whose repulsive area is closest (the first
-    on a tie) keeps its pressure, gap and deflection, as :func:`~roughcontact.plot.figure1`
-    would pick it among stored steps. Only the best state so far is held per target, so
-    the memory does not grow with the path (the paper's grids hold 4096² sites).
-
-    Parameters
-    ----------
-    targets : sequence of float
-        Repulsive areas per A0 (``[output] fields_at_area``).
-    approach_steps : int
-        Number of approach steps (lead-in included); retraction steps are not considered.
-    """
-
-    def __init__(self, targets, approach_steps: int):
-        self.targets = [float(t) for t in targets]
-        self.approach_steps = int(approach_steps)
-        self._best = {}  # target -> (distance, step, (pressure, gap, deflection))
-
-    def __call__(self, step, n_steps, result):
-        """``approach_retract``'s ``progress(step, n_steps, result)``; ``step`` counts from 1."""
-        index = step - 1
-        if not self.targets or index >= self.approach_steps:
-            return
-        # the sites Fig. 1 paints orange (p > 0), so that its choice is this one
-        area = area_fraction(result.pressure > 0)  # counted on the device
-        for target in self.targets:
-            distance = abs(area - target)
-            if target not in self._best or distance < self._best[target][0]:
-                self._best[target] = (
-                    distance,
-                    index,
-                    (result.pressure, result.gap, result.deflection),
-                )
-
-    def fields(self) -> dict:
-        """``{step: (pressure, gap, deflection)}`` of the chosen states, NumPy (the edge)."""
-        return {step: tuple(to_numpy(a) for a in arrays) for _, step, arrays in self._best.values()}
 
 
 def with_fields(ds, extra: dict):
@@ -116,6 +70,13 @@ def with_fields(ds, extra: dict):
     (:func:`roughcontact.pathdata.add_fields`).
     """
     return add_fields(ds, extra)
+
+
+#: The task parameters of its surface (:func:`roughcontact.self_affine`) and substrate
+#: (:class:`roughcontact.Substrate`).
+_SURFACE = ("hurst", "rms_slope", "rms_height", "short_cutoff", "long_cutoff", "rolloff",
+            "pixel_size", "seed")  # fmt: skip
+_SUBSTRATE = ("contact_modulus", "pixel_size", "thickness", "poisson", "base")
 
 
 def task_inputs(params: dict, path_settings: dict):
@@ -130,43 +91,23 @@ def task_inputs(params: dict, path_settings: dict):
     from ..elastic import Substrate
     from ..surfaces import self_affine
 
-    p = params
-    n = p["size"]
-    heights = self_affine(
-        (n, n),
-        hurst=p["hurst"],
-        rms_slope=p["rms_slope"],
-        rms_height=p["rms_height"],
-        short_cutoff=p["short_cutoff"],
-        long_cutoff=p["long_cutoff"],
-        rolloff=p["rolloff"],
-        pixel_size=p["pixel_size"],
-        seed=p["seed"],
-    )
-    substrate = Substrate(
-        (n, n),
-        contact_modulus=p["contact_modulus"],
-        pixel_size=p["pixel_size"],
-        thickness=p["thickness"],
-        poisson=p["poisson"],
-        base=p["base"],
-        periodic=p.get("periodic", True),
-    )
+    p, n = params, params["size"]
+    # the parameters carry the names of the keywords they are passed as
+    heights = self_affine((n, n), **{k: p[k] for k in _SURFACE})
+    substrate = Substrate((n, n), **{k: p[k] for k in _SUBSTRATE}, periodic=p.get("periodic", True))
     law = make_interaction(p)
     return heights, substrate, law, path_values(path_settings, heights, law, p)
 
 
 def compute_task(task: Task):
     """Run one task in this process and return its dataset (path, provenance, analysis)."""
-    from ..analysis.path_analysis import analyze_path
-    from ..solvers import approach_retract
+    from ..workflows.pipeline import run_path
 
     p, s = task.params, task.settings
     t0, started = time.perf_counter(), time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())
     heights, substrate, law, values = task_inputs(p, s["path"])
-    nearest = AreaFields(s["output"].get("fields_at_area", ()), approach_steps=len(values))
     t1 = time.perf_counter()
-    ds = approach_retract(
+    run = run_path(
         heights,
         substrate,
         law,
@@ -174,25 +115,19 @@ def compute_task(task: Task):
         tol=s["solver"]["tol"],
         max_iter=s["solver"]["max_iter"],
         fields_at=s["output"]["fields_at"],
-        progress=nearest,
-        device=task.device,
+        fields_at_area=s["output"].get("fields_at_area", ()),
+        device=task.device,  # the hard-wall reference's solves too
         dtype=s["solver"].get("dtype", "float64"),
+        analysis=s["analysis"],
         **{f"{s['path']['control']}s": values},
     )
-    ds = with_fields(ds, nearest.fields())
+    ds = run.path
     ds = ds.drop_vars([f for f in FIELDS if f in ds.variables and f not in s["output"]["fields"]])
-    t2 = time.perf_counter()
-    try:
-        analysis = analyze_path(
-            ds, heights=heights, substrate=substrate, device=task.device, **s["analysis"]
-        )  # the hard-wall reference's solves on the task's device, as the path's
-        analysis, error = analysis.to_dict(), ""
-    except ParameterError as err:  # the target area not reached, unconverged steps there
-        analysis, error = {}, str(err)
+    analysis = run.analysis.to_dict() if run.analysis is not None else {}
+    error = run.analysis_error
     # the surface is regenerated from the task's parameters and seed; not stored
     ds = ds.drop_vars("heights", errors="ignore")
     t3 = time.perf_counter()
-    converged = np.asarray(ds["converged"].values, dtype=bool)
     ds.attrs.update(
         {
             "task_id": task.id,
@@ -203,12 +138,12 @@ def compute_task(task: Task):
             "solver_tol": float(s["solver"]["tol"]),
             "solver_max_iter": int(s["solver"]["max_iter"]),
             "solver_dtype": s["solver"].get("dtype", "float64"),
-            "steps_not_converged": int((~converged).sum()),
+            "steps_not_converged": run.steps_not_converged,
             "analysis": json.dumps(analysis, sort_keys=True),
             "analysis_error": error,
             "setup_seconds": t1 - t0,
-            "path_seconds": t2 - t1,
-            "analysis_seconds": t3 - t2,
+            "path_seconds": run.path_seconds,
+            "analysis_seconds": run.analysis_seconds,
             "task_seconds": t3 - t0,
             "started_utc": started,
             "hostname": socket.gethostname(),

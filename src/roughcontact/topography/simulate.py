@@ -237,69 +237,33 @@ class Simulation:
         return json_safe(d)
 
 
-class _ApproachFields:
-    """Keep the pressure of the approach state nearest :data:`TARGET_AREA` (Fig. 1's
-    choice, as :class:`roughcontact.studies.task.AreaFields`), ignoring the retraction:
-    the approach ends at the first state with A_rep >= :data:`UNTIL_AREA`."""
-
-    def __init__(self, approach_steps):
-        from ..studies.task import AreaFields
-
-        self.nearest = AreaFields([TARGET_AREA], approach_steps)
-        self.done = False
-
-    def __call__(self, step, n_steps, result):
-        if self.done:
-            return
-        self.nearest(step, n_steps, result)
-        self.done = result.repulsive_area >= UNTIL_AREA
-
-    def pressure(self):
-        fields = self.nearest.fields()
-        return next(iter(fields.values()))[0] if fields else None
-
-
 def _run_seed(seed, heights, law, modulus, keep_map) -> SeedRun:
-    from ..analysis.path_analysis import UnconvergedPathError, analyze_path
     from ..elastic import Substrate
-    from ..solvers import PathError, approach_retract
-    from ..solvers.offsets import relative_offsets
+    from ..workflows.pipeline import run_path
 
     t0 = time.perf_counter()
     n = heights.shape[0]
     substrate = Substrate((n, n), contact_modulus=1.0, thickness=float(n), poisson=0.5,
                           base="bonded")  # fmt: skip
-    lead_in = relative_offsets(heights, _lead_in(law.range), "length", law)
-    body = relative_offsets(heights, BEARING_AREA, "bearing_area", law)
-    offsets = np.concatenate((lead_in, body))
-    fields = _ApproachFields(offsets.size) if keep_map else None
-    error = ""
-    try:
-        ds = approach_retract(
-            heights,
-            substrate,
-            law,
-            offsets=offsets,
-            retract=True,
-            tol=TOL,
-            max_iter=MAX_ITER,
-            until_area=UNTIL_AREA,
-            progress=fields,
-        )
-    except PathError as err:  # a non-finite state: the steps before it are kept
-        ds, error = err.partial, f"path stopped: {err}"
-    analysis = None
-    if not error:
-        try:
-            analysis = analyze_path(ds, target_area=TARGET_AREA, heights=heights,
-                                    substrate=substrate, hard_wall_reference=True)  # fmt: skip
-        except UnconvergedPathError as err:
-            error = f"not converged: {err}"
-        except ParameterError as err:  # 1 % not reached
-            error = str(err)
-    a, nan = analysis, math.nan
-    pull_off = float(ds.attrs.get("pull_off", nan)) if ds is not None else nan
-    converged = np.asarray(ds["converged"].values, dtype=bool) if ds is not None else np.ones(0)
+    run = run_path(
+        heights,
+        substrate,
+        law,
+        offsets=BEARING_AREA,
+        offset_unit="bearing_area",
+        lead_in=_lead_in(law.range),
+        retract=True,
+        tol=TOL,
+        max_iter=MAX_ITER,
+        until_area=UNTIL_AREA,
+        # the pressure of the approach state nearest 1 % (Fig. 1's choice)
+        fields_at_area=[TARGET_AREA] if keep_map else (),
+        analysis={"target_area": TARGET_AREA, "hard_wall_reference": True},
+        keep_partial=True,  # a non-finite state: the steps before it are kept
+    )
+    error = _seed_error(run)
+    a = run.analysis
+    nan = math.nan
     return SeedRun(
         seed=int(seed),
         kappa=a.kappa if a else nan,
@@ -310,18 +274,30 @@ def _run_seed(seed, heights, law, modulus, keep_map) -> SeedRun:
         predicted_kappa=a.predicted_kappa if a else nan,
         predicted_verdict=a.predicted_verdict if a else "",
         attractive_area=a.attractive_area if a else nan,
-        pull_off=pull_off,
-        pull_off_pressure=pull_off * modulus,
-        steps=int(converged.size),
-        steps_not_converged=int((~converged).sum()),
+        pull_off=run.pull_off,
+        pull_off_pressure=run.pull_off * modulus,
+        steps=run.steps,
+        steps_not_converged=run.steps_not_converged,
         seconds=time.perf_counter() - t0,
         error=error.splitlines()[0] if error else "",
         warnings=tuple(a.warnings) if a else (),
-        path=ds,
+        path=run.path,
         heights=heights,
         analysis=a,
-        pressure_map=fields.pressure() if fields is not None else None,
+        pressure_map=next(iter(run.area_fields.values()))[0] if run.area_fields else None,
     )
+
+
+def _seed_error(run) -> str:
+    """Why a seed has no analysis: a failed step, unconverged steps around 1 %, 1 % not
+    reached; empty when it has one."""
+    from ..analysis.path_analysis import UnconvergedPathError
+
+    if run.path_error:
+        return f"path stopped: {run.path_error}"
+    if isinstance(run.analysis_failure, UnconvergedPathError):
+        return f"not converged: {run.analysis_failure}"
+    return run.analysis_error
 
 
 def simulate_stickiness(

@@ -3,7 +3,7 @@
 **The load path** (:func:`demo_path`): the benchmarks' default surface (H = 0.8,
 h'rms = 0.1, λs = 8 a0, λL = L/2) pushed onto an elastic half-space (E* = 1) at
 increasing loads under load control, each state warm-started from the last
-(:func:`roughcontact.approach_retract`), with A_rep/A0 against N/A0 and κ_rep at 1 %
+(:func:`roughcontact.run_path`), with A_rep/A0 against N/A0 and κ_rep at 1 %
 repulsive area, from the site count and from the perimeter-corrected area (Pastewka &
 Robbins, PNAS 111, 3298 (2014), Eq. 2; the paper reports κ_rep ≈ 2 for its own soft wall,
 which the study below does not reproduce: see its report).
@@ -96,8 +96,9 @@ def demo_path(*, size: int = 512, seed: int = 2014, loads=None, tol: float = 1e-
     """
     from ..analysis.path import interpolate_at_area, kappa
     from ..elastic import Substrate
-    from ..solvers import PathError, PathInterrupted, approach_retract
+    from ..solvers import PathInterrupted
     from ..surfaces import self_affine, statistics
+    from .pipeline import run_path
 
     hurst, rms_slope, short_cutoff = 0.8, 0.1, 8.0
     heights = self_affine(
@@ -111,16 +112,15 @@ def demo_path(*, size: int = 512, seed: int = 2014, loads=None, tol: float = 1e-
     stats = statistics(heights)
     substrate = Substrate((size, size), contact_modulus=1.0)
     loads = np.geomspace(1.5e-4, 3e-3, 8) if loads is None else np.asarray(loads, dtype=float)
-    t0, error = time.perf_counter(), None
-    try:
-        ds = approach_retract(heights, substrate, loads=loads, retract=False, tol=tol,
-                              progress=progress)  # fmt: skip
-    except PathError as err:
-        ds, error = err.partial, str(err)
+    t0 = time.perf_counter()
+    try:  # a failed step keeps the steps before it (path_error)
+        run = run_path(heights, substrate, loads=loads, retract=False, tol=tol,
+                       progress=progress, keep_partial=True)  # fmt: skip
     except PathInterrupted as err:
         # nothing of a stopped demo is kept: stop as the signal itself does (its exit
         # code and message), not with the path's partial result
         raise err.__context__ or KeyboardInterrupt() from None
+    ds, error = run.path, run.path_error or None
     rows = [{k: kind(ds[k].values[i]) for k, kind in _ROW.items()} for i in range(ds.sizes["step"])]
     out = {
         "surface": {

@@ -32,7 +32,7 @@ def _inputs(ds):
 
 def _refined(ds, target, substeps):
     """The pressure map nearest A_rep/A0 = ``target`` on the task's approach, refined."""
-    from ..solvers import approach_retract
+    from .pipeline import run_path
 
     heights, substrate, law, values, settings = _inputs(ds)
     area = ds["repulsive_area"].values[ds["branch"].values == "approach"]
@@ -45,7 +45,7 @@ def _refined(ds, target, substeps):
     for _ in range(2):  # a second, finer pass where the first stays 3 % off
         offsets = np.concatenate([offsets, np.linspace(lo, hi, substeps + 1)[1:]])
         first = offsets.size - substeps - 1
-        path = approach_retract(
+        path = run_path(
             heights,
             substrate,
             law,
@@ -55,7 +55,7 @@ def _refined(ds, target, substeps):
             tol=settings["solver"]["tol"],
             max_iter=settings["solver"]["max_iter"],
             fields_at=list(range(first, offsets.size)),
-        )
+        ).path
         rep = np.asarray(path["pressure"].values > 0).mean(axis=(1, 2))
         j = int(np.argmin(np.abs(rep - target)))
         if abs(rep[j] / target - 1.0) <= 0.03 or rep.size < 2 or rep[-1] < target:
