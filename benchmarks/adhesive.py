@@ -63,14 +63,22 @@ if __name__ == "__main__":  # before NumPy, SciPy or a peer loads its BLAS: see 
 import argparse
 import contextlib
 import json
-import math
 import os
 import time
 from importlib import metadata
 
 import _threads
 import numpy as np
-from hardwall import capture_stderr_fd, fft_pair_seconds, machine_meta, n_cores, surface
+from adhesive_peers import check_potential, run_adhesion, run_tamaas
+from adhesive_report import (
+    STEP_HEADER,
+    SUMMARY_HEADER,
+    format_step,
+    format_summary,
+    summarise,
+    targets,
+)
+from hardwall import fft_pair_seconds, machine_meta, n_cores, surface
 
 PEERS = ("adhesion", "tamaas")
 A0 = 1.0  # pixel size = equilibrium distance (lattice units)
@@ -132,55 +140,6 @@ def approach_state(n: int, la: float, seed: int, steps: int, tol: float):
     return h, law, sub, offsets, state
 
 
-def adhesion_potential(law, core: str = "linear"):
-    """Adhesion 0.93's smoothed LJ93 wall with the same V(g) as ``law``.
-
-    ``LJ93(eps, sigma)`` is the same 9-3 wall as ours (same eps, sigma: minimum at a0,
-    V''(a0) = k); ``spline_cutoff(gamma=w)`` (transition at the minimum) continues it
-    by the quartic that reaches zero with zero slope and curvature, whose range is
-    2 sqrt(3 w / k) = Delta_r: the paper's potential. ``core="linear"`` adds Adhesion's
-    own ``linearize_core()`` at its default r_ti = r_min / 2 = a0 / 2 (constant
-    repulsive pressure 84 E* below it): identical to ours wherever g >= a0 / 2, which
-    every converged state satisfies (the smallest gap is printed), but without it the
-    bare 9-3 wall changes sign at g = 0 and runs to -infinity for g < 0, where an
-    L-BFGS-B trial step can land (``core="bare"`` shows this).
-    """
-    from Adhesion.Interactions import LJ93
-
-    pot = LJ93(law.epsilon, law.sigma).spline_cutoff(gamma=law.work_of_adhesion)
-    if core == "linear":
-        pot = pot.linearize_core(r_ti=0.5 * law.equilibrium_distance)
-    return pot
-
-
-def check_potential(law, core: str = "linear") -> dict:
-    """Compare Adhesion's V, V', V'' with ours on gaps across core, well, tail."""
-    pot = adhesion_potential(law, core)
-    a0, dr = law.equilibrium_distance, law.range
-    g = np.concatenate([np.linspace(0.5 * a0, a0, 21), a0 + dr * np.linspace(0.0, 1.3, 27)])
-    v, dv, ddv = pot.evaluate(g, potential=True, gradient=True, curvature=True)
-    spline = pot.parent_potential if core == "linear" else pot
-
-    def energy(x):
-        return float(pot.evaluate(np.array([x]))[0][0])
-
-    return dict(
-        gaps=len(g),
-        gap_range=[float(g.min()), float(g.max())],
-        cutoff_adhesion=float(spline.cutoff_radius),
-        cutoff_rc=float(law.cutoff),
-        max_abs_energy_diff=float(np.abs(v - law.energy(g)).max()),
-        max_abs_pressure_diff=float(np.abs(-dv - law.pressure(g)).max()),
-        max_rel_curvature_diff=float(
-            np.abs(ddv - law.curvature(g)).max() / np.abs(law.curvature(g)).max()
-        ),
-        sample=[
-            (x, float(law.energy(np.array([x]))[0]), energy(x))
-            for x in (0.5 * a0, 0.8 * a0, a0, a0 + dr / 3, a0 + 0.9 * dr, a0 + 1.1 * dr)
-        ],
-    )
-
-
 # ------------------------------------------------------------------------------ codes
 # Each runs the whole approach once and returns one dict per step with: offset, seconds,
 # iterations, converged, residual (max force imbalance / E*, where defined),
@@ -217,136 +176,6 @@ def run_roughcontact(h, law, offsets, tol, max_iter, dtype="float64", **_) -> di
     return dict(steps=steps, pressure=np.array(prev.pressure), gap=np.array(prev.gap))
 
 
-def run_adhesion(h, law, offsets, tol, max_iter, time_cap=math.inf, core="linear", **_) -> dict:
-    """Adhesion 0.93 SmoothContactSystem + scipy L-BFGS-B, warm-started.
-
-    Conventions: ContactMechanics' gap is ``u - h - offset_CM`` with u positive into the
-    substrate, ours ``d - h + w``; with a rigid uniform mode (mean u = 0, as our w)
-    u = w and offset_CM = -d. The substrate gets ``stiffness_q0=0`` (no energy in the
-    uniform mode) and the objective is evaluated at ``x - mean(x)`` with its gradient's
-    mean removed, so the minimisation runs over the same mean-free displacements as
-    ours (without it the uniform mode would be free or a spring, a different problem).
-    The gradient is the force imbalance per pixel (area a0^2 = 1), so L-BFGS-B's
-    ``gtol`` (max |g|) equals our residual times E* a0^2. ``ftol = 0`` so that it stops
-    on the gradient only (or the iteration cap, or a failed line search).
-    """
-    import scipy.optimize
-    from Adhesion.System import SmoothContactSystem
-    from ContactMechanics import PeriodicFFTElasticHalfSpace
-    from SurfaceTopography import Topography
-
-    n0, n1 = h.shape
-    size = (n0 * A0, n1 * A0)
-    sub = PeriodicFFTElasticHalfSpace((n0, n1), ES, physical_sizes=size, stiffness_q0=0.0)
-    topo = Topography(np.asarray(h, dtype=np.float64), physical_sizes=size)
-    system = SmoothContactSystem(sub, adhesion_potential(law, core), topo)
-    gtol = tol * ES * A0 * A0
-    x = np.zeros(n0 * n1)
-    steps = []
-    for d in offsets:
-        fun = system.objective(-float(d), gradient=True)
-
-        def objective(x, fun=fun):
-            e, g = fun(x - x.mean())
-            return e, g - g.mean()
-
-        t0 = time.perf_counter()
-
-        def stop_after_cap(intermediate_result, t0=t0):
-            if time.perf_counter() - t0 > time_cap:
-                raise StopIteration
-
-        with np.errstate(all="ignore"):
-            res = scipy.optimize.minimize(
-                objective,
-                x,
-                jac=True,
-                method="L-BFGS-B",
-                callback=stop_after_cap,
-                options=dict(gtol=gtol, ftol=0.0, maxiter=max_iter, maxfun=10 * max_iter),
-            )
-        t = time.perf_counter() - t0
-        x = np.asarray(res.x) - np.mean(res.x)
-        _, grad = objective(x)
-        residual = float(np.abs(grad).max()) / (ES * A0 * A0)
-        gap = np.asarray(system.gap).copy()
-        p_int = np.asarray(system.interaction_force) / (A0 * A0)  # pressure, > 0 repulsive
-        a0, dr = law.equilibrium_distance, law.range
-        capped = t > time_cap
-        steps.append(
-            dict(
-                offset=float(d),
-                seconds=t,
-                iterations=int(res.nit),
-                evaluations=int(res.nfev),
-                converged=residual <= tol,
-                residual=residual,
-                message=("time cap reached" if capped else str(res.message)),
-                repulsive_area=float(np.mean(gap < a0)),
-                attractive_area=float(np.mean((gap > a0) & (gap < a0 + dr))),
-                load=float(p_int.mean()),
-                min_gap=float(gap.min()),
-            )
-        )
-    return dict(steps=steps, pressure=p_int, gap=gap)
-
-
-def run_tamaas(h, law, offsets, tol, max_iter, **_) -> dict:
-    """tamaas 2.9 PolonskyKeerRey (gap primal, mean-gap constraint) + exponential adhesion.
-
-    Conventions as in hardwall.py (heights point at the body, no sign flip; E* = E with
-    nu = 0; ``model.displacement`` is the surface position, gap = displacement - h >= 0;
-    ``model.traction`` > 0 compressive). ``solve(target)`` imposes the mean gap.
-    """
-    import tamaas as tm
-
-    n0, n1 = h.shape
-    heights = np.ascontiguousarray(h, dtype=np.float64)
-    model = tm.ModelFactory.createModel(tm.model_type.basic_2d, [n0 * A0, n1 * A0], [n0, n1])
-    model.E = ES
-    model.nu = 0.0
-    solver = tm.PolonskyKeerRey(model, heights, tol, tm.PolonskyKeerRey.gap, tm.PolonskyKeerRey.gap)
-    solver.dump_freq = 10**9  # tamaas still logs the last iteration: parse it
-    solver.max_iter = max_iter
-    rho = 9.0 * law.range / 16.0
-    gamma = law.work_of_adhesion
-    adhesion = tm.ExponentialAdhesionFunctional(heights)
-    adhesion.parameters = {"rho": rho, "surface_energy": gamma}
-    solver.addFunctionalTerm(adhesion)
-    mean_h = float(np.mean(h))
-    steps = []
-    for d in offsets:
-        with capture_stderr_fd() as box:
-            t0 = time.perf_counter()
-            err = solver.solve(float(d) - mean_h - law.equilibrium_distance)
-            t = time.perf_counter() - t0
-        rows = [line.split() for line in box["text"].splitlines()]
-        counts = [int(r[0]) for r in rows if r and r[0].isdigit()]
-        traction = np.array(model.traction, copy=True)
-        gap = np.array(model.displacement, copy=True) - heights
-        free = gap > 0
-        # force imbalance off the hard wall in our measure (elastic minus adhesive traction)
-        imb = traction + gamma / rho * np.exp(-gap / rho)
-        residual = float(np.abs(imb[free] - imb[free].mean()).max()) / ES if free.any() else 0.0
-        steps.append(
-            dict(
-                offset=float(d),
-                seconds=t,
-                iterations=counts[-1] if counts else None,
-                evaluations=None,
-                converged=bool(err <= tol),
-                residual=residual,
-                own_error=float(err),
-                message="",
-                repulsive_area=float(np.mean(~free)),
-                attractive_area=float(np.mean(free)),
-                load=float(traction.mean()),
-                min_gap=float(gap.min()),
-            )
-        )
-    return dict(steps=steps, pressure=traction, gap=gap, rho=rho, surface_energy=gamma)
-
-
 def run_roughcontact32(*args, **kwargs) -> dict:
     """roughcontact in single precision (``dtype="float32"``, same tolerance)."""
     return run_roughcontact(*args, **kwargs, dtype="float32")
@@ -370,78 +199,6 @@ def repeat(code, repeats, *args, **kwargs) -> dict:
         step["all_seconds"] = [o["steps"][i]["seconds"] for o in outs]
         step["seconds"] = float(np.median(step["all_seconds"]))
     return out
-
-
-def summarise(code, n, la, out, fft) -> dict:
-    steps = out["steps"]
-    t = np.array([s["seconds"] for s in steps])
-    its = [s["iterations"] for s in steps]
-    it_arr = np.array([i if i is not None else np.nan for i in its], dtype=float)
-    per_it = float(t.sum() / np.nansum(it_arr)) if np.nansum(it_arr) > 0 else float("nan")
-    last = steps[-1]
-    return dict(
-        code=code,
-        n=n,
-        adhesion_length=la,
-        seconds_per_step=float(np.median(t)),
-        seconds_total=float(t.sum()),
-        iterations_median=float(np.nanmedian(it_arr)),
-        iterations_max=float(np.nanmax(it_arr)),
-        iterations_total=float(np.nansum(it_arr)),
-        seconds_per_iteration=per_it,
-        fft_pair_seconds=fft,
-        iteration_over_fft=per_it / fft,
-        converged_steps=int(sum(s["converged"] for s in steps)),
-        steps=len(steps),
-        final_repulsive_area=last["repulsive_area"],
-        final_attractive_area=last["attractive_area"],
-        final_load=last["load"],
-        min_gap=float(min(s["min_gap"] for s in steps)),
-    )
-
-
-STEP_HEADER = (
-    f"  {'code':<15}{'step':>5}{'offset':>9}{'time[s]':>9}{'iters':>7}{'fev':>7}"
-    f"{'resid':>9}{'A_rep':>8}{'A_att':>8}{'load':>11}{'conv':>6}"
-)
-
-
-def format_step(code, k, s, ref=None) -> str:
-    line = (
-        f"  {code:<15}{k:>5}{s['offset']:>9.4f}{s['seconds']:>9.3f}"
-        f"{(s['iterations'] if s['iterations'] is not None else -1):>7}"
-        f"{(s['evaluations'] if s['evaluations'] is not None else '-'):>7}"
-        f"{s['residual']:>9.1e}{100 * s['repulsive_area']:>7.2f}%"
-        f"{100 * s['attractive_area']:>7.2f}%{s['load']:>11.3e}"
-        f"{('yes' if s['converged'] else 'NO'):>6}"
-    )
-    if ref is not None:
-        line += f"   dA_rep {s['dA_rep_pixels']:+d} px, dload {s['dload_rel']:+.1e}"
-    if s.get("own_error") is not None:
-        line += f"   own err {s['own_error']:.1e}"
-    if not s["converged"] and s.get("message"):
-        line += f"   ({s['message']})"
-    return line
-
-
-SUMMARY_HEADER = (
-    f"{'code':<15}{'n':>6}{'la':>7}{'t/step':>9}{'total':>9}{'it med':>8}{'it max':>8}"
-    f"{'ms/it':>9}{'fft[ms]':>9}{'it/fft':>8}{'Adh/rc':>8}{'tm/rc':>7}{'A_rep':>8}{'conv':>7}"
-)
-
-
-def format_summary(r) -> str:
-    sp = r.get("adhesion_over_roughcontact")
-    st = r.get("tamaas_over_roughcontact")
-    return (
-        f"{r['code']:<15}{r['n']:>6}{r['adhesion_length']:>7g}{r['seconds_per_step']:>9.3f}"
-        f"{r['seconds_total']:>9.2f}{r['iterations_median']:>8.0f}{r['iterations_max']:>8.0f}"
-        f"{1e3 * r['seconds_per_iteration']:>9.2f}{1e3 * r['fft_pair_seconds']:>9.2f}"
-        f"{r['iteration_over_fft']:>8.2f}{(f'{sp:.1f}x' if sp is not None else '-'):>8}"
-        f"{(f'{st:.1f}x' if st is not None else '-'):>7}"
-        f"{100 * r['final_repulsive_area']:>7.2f}%"
-        f"{r['converged_steps']:>4}/{r['steps']:<2}"
-    )
 
 
 def run(args, log=print) -> dict:
@@ -570,44 +327,6 @@ def run(args, log=print) -> dict:
             for r in rows.values():
                 summaries.append(r)
     return dict(summary=summaries, details=details, potential_checks=checks)
-
-
-def targets(summary, log=print) -> dict:
-    """Targets: >= 20x Adhesion per step; iterations(max n) <= 1.5 x iterations(256)."""
-    out = {}
-    ours = [r for r in summary if r["code"] == "roughcontact"]
-    for la in sorted({r["adhesion_length"] for r in ours}):
-        rs = sorted((r for r in ours if r["adhesion_length"] == la), key=lambda r: r["n"])
-        for r in rs:
-            sp = r.get("adhesion_over_roughcontact")
-            if sp is not None:
-                log(
-                    f"# target la={la:g} n={r['n']}: Adhesion/ours per step {sp:.1f}x "
-                    f"({'meets' if sp >= 20 else 'MISSES'} >= 20x)"
-                )
-                out[f"speedup_la{la:g}_n{r['n']}"] = sp
-        if len(rs) > 1:
-            ratio = rs[-1]["iterations_median"] / rs[0]["iterations_median"]
-            log(
-                f"# target la={la:g}: median iterations/step n={rs[-1]['n']} vs n={rs[0]['n']}: "
-                f"{rs[-1]['iterations_median']:.0f} / {rs[0]['iterations_median']:.0f} = "
-                f"{ratio:.2f} ({'meets' if ratio <= 1.5 else 'MISSES'} <= 1.5)"
-            )
-            out[f"iteration_growth_la{la:g}"] = ratio
-    for r in summary:  # reported beside the targets, never counted for them
-        if r["code"] == "roughcontact32" and r.get("adhesion_over_roughcontact"):
-            log(
-                f"# (float32, not the target) la={r['adhesion_length']:g} n={r['n']}: "
-                f"Adhesion/ours {r['adhesion_over_roughcontact']:.1f}x, pressure rel. L2 vs "
-                f"float64 {r['final_pressure_rel_l2_vs_roughcontact']:.1e}"
-            )
-    for r in summary:
-        if r["converged_steps"] < r["steps"]:
-            log(
-                f"# NOT CONVERGED: {r['code']} n={r['n']} la={r['adhesion_length']:g}: "
-                f"{r['steps'] - r['converged_steps']} of {r['steps']} steps"
-            )
-    return out
 
 
 def main(argv=None) -> int:
