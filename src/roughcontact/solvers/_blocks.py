@@ -22,6 +22,8 @@ convergence test).
 
 from __future__ import annotations
 
+import math
+
 __all__ = ["BLOCK", "FIRST_BLOCK", "Schedule"]
 
 #: The most device steps between two host checks.
@@ -33,17 +35,30 @@ FIRST_BLOCK = 2
 class Schedule:
     """Lengths of the blocks of steps between host checks (see the module docstring).
 
-    ``every=1`` checks after every step (a callback must see every iteration).
+    ``every=1`` checks after every step (a callback must see every iteration). Where
+    the residual falls steadily, a block is also cut at the step where the residual's
+    geometric trend (over the last block) reaches the next decision's threshold, so
+    that a decision wastes few frozen steps.
     """
 
     def __init__(self, every: int | None = None):
         self.most = BLOCK if every is None else every
         self.length = min(FIRST_BLOCK, self.most)
+        self.residual, self.rate = math.nan, math.nan
 
-    def next(self, limit: int) -> int:
-        """The next block's length, at most ``limit`` (steps left before a known stop)."""
-        return max(1, min(self.length, limit))
+    def next(self, limit: int, residual: float = math.nan, threshold: float = 0.0) -> int:
+        """The next block's length, at most ``limit`` (steps left before a known stop);
+        ``residual``: the last one seen, ``threshold``: where the host decides next."""
+        n = min(self.length, limit)
+        if 0.0 < self.rate < 1.0 and threshold > 0.0 and residual > threshold:
+            # steps until the trend crosses the threshold: the block ends there
+            n = min(n, int(math.log(threshold / residual) / math.log(self.rate)) + 1)
+        return max(1, n)
 
-    def ran(self, full: bool) -> None:
-        """Record how the last block ended: all its steps taken, or one froze."""
+    def ran(self, full: bool, steps: int = 0, residual: float = math.nan) -> None:
+        """Record how the last block ended: all its steps taken, or one froze; ``steps``
+        taken from the last ``residual`` seen to ``residual``."""
         self.length = min(2 * self.length, self.most) if full else min(FIRST_BLOCK, self.most)
+        ok = full and steps > 0 and self.residual > 0.0 and residual > 0.0
+        self.rate = (residual / self.residual) ** (1.0 / steps) if ok else math.nan
+        self.residual = residual

@@ -6,7 +6,7 @@ integer-array assignment. Every pass is over the whole grid, which a GPU does at
 bandwidth.
 
 Structure (init / step / terminate, as in optimistix; the driver is :mod:`._blocks`):
-:meth:`_Dense.init` builds a :class:`State` record of device arrays (2D fields, 0-d
+:meth:`_Dense.init` builds a :class:`State` record of device arrays (2D fields, (1, 1)
 scalars), :meth:`_Dense.step` advances it by one iteration without any host sync, and the
 host reads a few scalars once per block of steps (:class:`._blocks.Schedule`: up to
 :data:`._blocks.BLOCK` = 8 steps). The sequential loop's branches are ``where``
@@ -48,13 +48,18 @@ class State(NamedTuple):
     t: object  # the search direction (2D; zero off the contact set)
     c: object  # the contact set (bool 2D) ...
     cf: object  # ... as 0/1 in the fields' dtype (masks by a product: exact, finite fields)
-    g_old: object  # g.z of the last step (0-d float64)
-    delta: object  # whether t holds conjugate directions to build on (0-d bool)
-    it: object  # iterations (0-d float64)
-    tau: object  # the last step length tried (0-d float64; NaN: a breakdown)
-    residual: object  # the residual at the top of the last step taken (0-d float64)
+    g_old: object  # g.z of the last step ((1, 1) float64)
+    delta: object  # whether t holds conjugate directions to build on ((1, 1) bool)
+    it: object  # iterations ((1, 1) float64)
+    tau: object  # the last step length tried ((1, 1) float64; NaN: a breakdown)
+    residual: object  # the residual at the top of the last step taken ((1, 1) float64)
     best: object  # the float32 stall guard's best residual and ...
-    since: object  # ... the tops since it improved (0-d float64; float32 solves only)
+    since: object  # ... the tops since it improved ((1, 1) float64; float32 solves only)
+
+
+def _fetch(xp, scalars):
+    """The (1, 1) device scalars as Python floats, in one transfer (one host sync)."""
+    return fetch(xp, [xp.reshape(x, ()) for x in scalars])
 
 
 def _fast_operator(substrate, which, like32):
@@ -89,14 +94,14 @@ class _Dense:
         self.stiff = None
         if pb.precondition is not None:
             self.stiff = _fast_operator(substrate, _STIFFNESS, like32)
-        # every constant a step uses is a 0-d array made once (a Python scalar operand
+        # every constant a step uses is a (1, 1) array made once (a Python scalar operand
         # would be converted, i.e. a new array, at every use)
         c = self.const
         self.zero, self.zero64, self.one64, self.nan64 = c(0.0), c(0.0, f64), c(1.0, f64), c(
             math.nan, f64
         )
         self.inf64, self.scale = c(math.inf, f64), c(pb.scale, f64)
-        self.true = xp.asarray(True, device=dev)
+        self.true = xp.full((1, 1), True, dtype=xp.bool, device=dev)
         self.joining = c(JOINING_KEEPS_DIRECTIONS, f64)
         self.fixed = None if self.load else c(pb.offset)
         self.target = c(pb.target, f64) if self.load else None
@@ -109,13 +114,15 @@ class _Dense:
             self.patience = c(float(self.stall.patience), f64)
 
     def const(self, value, dtype=None):
-        return self.xp.asarray(value, dtype=dtype or self.dt, device=self.dev)
+        # scalars are (1, 1) arrays, not 0-d: the array API's 0-d operands are promoted
+        # to a dimension of their own (array_api_strict: one array more per operation)
+        return self.xp.full((1, 1), value, dtype=dtype or self.dt, device=self.dev)
 
-    def in_dt(self, x):  # a float64 0-d scalar in the fields' precision (as a Python float is)
+    def in_dt(self, x):  # a float64 scalar in the fields' precision (as a Python float is)
         return x if x.dtype == self.dt else self.xp.astype(x, self.dt)
 
-    def total(self, x):  # sum accumulated in float64, a 0-d array
-        return self.xp.sum(x, dtype=self.f64)
+    def total(self, x):  # sum accumulated in float64, a (1, 1) array
+        return self.xp.sum(x, dtype=self.f64, keepdims=True)
 
     def init(self, p):
         """The state at pressure ``p`` (flat), with ``G p - h`` evaluated exactly."""
@@ -139,7 +146,7 @@ class _Dense:
     def top(self, st, pre):
         """The gap, the contact set a step acts on (with the interpenetrating sites when
         ``pre``: they join it), the gap on it, the set's size before (``n_c``) and after,
-        and the residual (float64 0-d)."""
+        and the residual (float64 (1, 1))."""
         xp, s, c, cf = self.xp, st.s, st.c, st.cf
         n_c = self.total(cf)
         if self.load:
@@ -152,15 +159,15 @@ class _Dense:
             c = c | (gap < self.zero)
             cf = xp.astype(c, self.dt)
             g = gap * cf
-            residual = xp.max(xp.abs(g)) / self.scale
+            residual = xp.max(xp.abs(g), keepdims=True) / self.scale
         else:
             g = gap * cf
             spread = xp.where(c, xp.abs(gap), -gap)
-            residual = xp.maximum(xp.max(spread), self.zero) / self.scale
+            residual = xp.maximum(xp.max(spread, keepdims=True), self.zero) / self.scale
         return gap, c, cf, g, n_c, residual
 
     def step(self, st, threshold=None, resume=None, count_stall=True):
-        """One iteration (no host sync). With ``threshold`` (a 0-d float64: the refresh
+        """One iteration (no host sync). With ``threshold`` (a (1, 1) float64: the refresh
         threshold of :class:`.loop_control.ReliableUpdates`) the top's host decisions are
         tested and a step that needs one leaves ``st`` unchanged (see the module
         docstring); ``resume``: the residual below which preconditioning returns."""
@@ -205,14 +212,14 @@ class _Dense:
             ol = out | (clipped & (g < zero))
             p = xp.where(ol, -tau_dt * gap, xp.where(clipped, zero, p_new))
             changed = clipped | out
-            delta = ~xp.any(ol)
+            delta = ~xp.any(ol, keepdims=True)
         c = p > zero
         cf = xp.astype(c, self.dt)
         t = t * cf
         s = s + self.green(p - p_new)
         if load:  # back to the load: s = lam (u + G c) - h
             p_sum = total(p)
-            rescale = xp.any(changed) & (p_sum > self.zero64)
+            rescale = xp.any(changed, keepdims=True) & (p_sum > self.zero64)
             lam = xp.where(rescale, self.target / p_sum, self.one64)
             p = p * in_dt(lam)
             s = in_dt(lam) * s + in_dt(lam - self.one64) * self.hf
@@ -256,7 +263,7 @@ def iterate_dense(p, pb, substrate):
         if decide:
             # the sequential loop's top, on the host (one transfer)
             _, _, _, _, n_c, top_residual = loop.top(st, False)
-            n_c, top_residual = fetch(xp, [n_c, top_residual])
+            n_c, top_residual = _fetch(xp, [n_c, top_residual])
             if n_c == 0:
                 if loop.load:  # a projection clipped everything: restart from uniform
                     p0 = xp.full_like(st.p, pb.target / pb.hf.shape[0])
@@ -292,14 +299,15 @@ def iterate_dense(p, pb, substrate):
                                  since=loop.const(float(loop.stall.since), loop.f64))  # fmt: skip
         # a block of steps: the first repeats the top just decided (its decisions taken)
         limit = min(RELIABLE_EVERY - reliable.since, pb.max_iter - it)
-        n = schedule.next(limit)
-        threshold = loop.const(max(pb.tol, RELIABLE_DROP * reliable.reliable), loop.f64)
+        refresh_below = max(pb.tol, RELIABLE_DROP * reliable.reliable)
+        n = schedule.next(limit, residual, refresh_below)
+        threshold = loop.const(refresh_below, loop.f64)
         resume = None
         if not kind.pre and math.isfinite(kind.resume_below):
             resume = loop.const(kind.resume_below, loop.f64)
         for i in range(n):
             st = loop.step(st, threshold, resume, count_stall=not (decide and i == 0))
-        values = fetch(xp, [st.it, st.tau, st.residual, st.best, st.since])  # one host sync
+        values = _fetch(xp, [st.it, st.tau, st.residual, st.best, st.since])  # one host sync
         taken = int(values[0]) - it
         it, exact = it + taken, exact and taken == 0
         for _ in range(taken):
@@ -316,7 +324,7 @@ def iterate_dense(p, pb, substrate):
             status = SolveStatus.NON_FINITE
             message = f"breakdown at iteration {it}: non-finite step (check the inputs)"
             break
-        schedule.ran(taken == n)
+        schedule.ran(taken == n, taken, values[2])
         # the host decides where a step froze, and where a refresh or the cap is due
         decide = taken < n or reliable.since >= RELIABLE_EVERY or it >= pb.max_iter
         if taken:
