@@ -45,6 +45,16 @@ class Schedule:
         self.most = BLOCK if every is None else every
         self.length = min(FIRST_BLOCK, self.most)
         self.residual, self.rate = math.nan, math.nan
+        self.wait, self.waited = 0, 0  # back-off of a loop whose device steps can fail
+
+    def ready(self) -> bool:
+        """Whether to try device steps now (a loop whose first step froze waits 1, 2, 4,
+        ... host iterations before trying again: a frozen step is wasted work); call
+        once per host iteration."""
+        if self.waited >= self.wait:
+            return True
+        self.waited += 1
+        return False
 
     def next(self, limit: int, residual: float = math.nan, threshold: float = 0.0) -> int:
         """The next block's length, at most ``limit`` (steps left before a known stop);
@@ -59,6 +69,10 @@ class Schedule:
         """Record how the last block ended: all its steps taken, or one froze; ``steps``
         taken from the last ``residual`` seen to ``residual``."""
         self.length = min(2 * self.length, self.most) if full else min(FIRST_BLOCK, self.most)
+        if steps == 0 and not full:  # not one step: back off (see ready)
+            self.wait, self.waited, self.length = min(max(2 * self.wait, 1), BLOCK), 0, 1
+        elif steps:
+            self.wait = 0
         ok = full and steps > 0 and self.residual > 0.0 and residual > 0.0
         self.rate = (residual / self.residual) ** (1.0 / steps) if ok else math.nan
         self.residual = residual

@@ -97,8 +97,11 @@ class _Dense:
         # every constant a step uses is a (1, 1) array made once (a Python scalar operand
         # would be converted, i.e. a new array, at every use)
         c = self.const
-        self.zero, self.zero64, self.one64, self.nan64 = c(0.0), c(0.0, f64), c(1.0, f64), c(
-            math.nan, f64
+        self.zero, self.zero64, self.one64, self.nan64 = (
+            c(0.0),
+            c(0.0, f64),
+            c(1.0, f64),
+            c(math.nan, f64),
         )
         self.inf64, self.scale = c(math.inf, f64), c(pb.scale, f64)
         self.true = xp.full((1, 1), True, dtype=xp.bool, device=dev)

@@ -15,6 +15,7 @@ from .._backend import (
     to_numpy,
 )
 from .._validate import ParameterError, heights2d, real_array, tolerance
+from .reductions import fetch
 
 __all__ = [
     "DEFAULT_TOL",
@@ -68,14 +69,15 @@ def lowest_hard_wall_offset(heights, substrate) -> float:
 
 def check_hard_wall_offset(heights, substrate, offset) -> None:
     """Reject an offset below :func:`lowest_hard_wall_offset` (no impenetrable state)."""
-    mean = lowest_hard_wall_offset(heights, substrate)
-    if offset is None or mean == -math.inf:
+    if offset is None or not substrate.rigid_mean:
         return
     xp = array_namespace(heights)
+    # lowest_hard_wall_offset (the mean) and max|h| in one transfer (a GPU waits once)
+    mean, top = fetch(xp, [xp.mean(heights), xp.max(xp.abs(heights))])
     # the mean's rounding in the heights' precision (float32: ~1e-7 of max|h|), so that
     # float32 accepts the offsets float64 accepts (d = 0 on a mean-zero surface)
     slack = max(1e-12, 64 * float(xp.finfo(heights.dtype).eps))
-    if offset < mean - slack * (float(xp.max(xp.abs(heights))) + abs(offset)):
+    if offset < mean - slack * (top + abs(offset)):
         raise ParameterError(
             f"offset must be >= mean(heights) = {mean:g} for a hard wall on a substrate with "
             f"a rigid mean (got {offset:g}: the surfaces would overlap everywhere)"

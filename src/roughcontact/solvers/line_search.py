@@ -8,7 +8,28 @@ from ._inplace import Workspace
 from .reductions import dot, fetch, on_device, vdot
 from .roots import bracketed_root
 
-__all__ = ["line_minimum"]
+__all__ = ["device_guess", "line_minimum"]
+
+
+def _device_guess(interaction, sa, ga, c0, c1, curv, slope0, work):
+    """The Newton guess ``hi`` of :func:`line_minimum` with the curvature ``curv`` at
+    alpha = 0, the interaction pressure ``p`` there and the slope ``f_hi``: device scalars."""
+    xp = work.xp
+    hi = xp.where(curv > 0.0, -slope0 / xp.where(curv > 0.0, curv, 1.0), 1.0)
+    hi = xp.minimum(xp.maximum(hi, 1e-8), 4.0)
+    p = interaction.pressure(ga + work.scalar(hi, ga) * sa)
+    return hi, p, c0 + hi * c1 - vdot(sa, p)
+
+
+def device_guess(interaction, gap, s, kw, ks, slope0, work):
+    """Off NumPy, on every site: :func:`line_minimum`'s first guess ``(hi, f_hi)`` along
+    ``s`` from ``gap`` (device scalars; the same values as there): it is taken when
+    ``|f_hi| <= rtol |slope0|``."""
+    c0 = vdot(s, kw)
+    curv = vdot(s * s, interaction.curvature(gap))
+    c1 = vdot(s, ks)
+    hi, _, f_hi = _device_guess(interaction, s, gap, c0, c1, curv + c1, slope0, work)
+    return hi, f_hi
 
 
 def line_minimum(
@@ -78,11 +99,8 @@ def line_minimum(
         # a GPU: the guess and the slope there as device scalars, to the host in one
         # transfer with the line's other scalars (one host sync for an accepted guess)
         xp = work.xp
-        hi = xp.where(curv > 0.0, -slope0 / xp.where(curv > 0.0, curv, 1.0), 1.0)
-        hi = xp.minimum(xp.maximum(hi, 1e-8), 4.0)
-        p = interaction.pressure(ga + work.scalar(hi, ga) * sa)
+        hi, p, f_hi = _device_guess(interaction, sa, ga, c0, c1, curv, slope0, work)
         last.update(pressure=p, sites=sites)
-        f_hi = c0 + hi * c1 - vdot(sa, p)
         state, ahead = speculate(hi, p) if speculate is not None else (None, [])
         k = len(also)
         c0, c1, slope0, hi, f_hi, *rest = fetch(xp, [c0, c1, slope0, hi, f_hi, *also, *ahead])
