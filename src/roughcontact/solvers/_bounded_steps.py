@@ -83,7 +83,7 @@ class _DeviceSteps:
         ks = self.stiff_single(s)
         crossing = s < 0
         alpha_max = xp.min(xp.where(crossing, -st.gap / xp.where(crossing, s, -1.0), math.inf))
-        hi, f_hi = device_guess(self.interaction, st.gap, s, st.kw, ks, slope0, self.work)
+        hi, f_hi, _ = device_guess(self.interaction, st.gap, s, ks, slope0, self.work, kw=st.kw)
         go = ok & (xp.abs(f_hi) <= LINE_RTOL * xp.abs(slope0)) & (hi <= alpha_max)
         w, kw = st.w + in_dt(hi) * s, st.kw + in_dt(hi) * ks
         gap, mu, active, free, rr = self.top(w, kw)

@@ -262,20 +262,15 @@ def minimize_energy_bounded(
             refresh_below = max(tol, RELIABLE_DROP * reliable.reliable)
             # the stall guard cannot stop the solve inside the block (it sees its tops after)
             stall_left = stall.patience - stall.since - 1 if stall.active else max_iter
-            n = blocks.next(min(RELIABLE_EVERY - reliable.since, max_iter - it, stall_left),
-                            residual, refresh_below)  # fmt: skip
+            limit = min(RELIABLE_EVERY - reliable.since, max_iter - it, stall_left)
+            length = blocks.next(limit, residual, refresh_below)
             st = stepper.state(w, kw, gap, mu, active, free, rr, rr_max, n_free, s, z_old,
                                gz_old, active_old)  # fmt: skip
+            fresh = s is None or active_old is None
             st, taken, rr_max, n_free, tops = stepper.block(
-                st,
-                n,
-                it,
-                s is None or active_old is None,
-                restart_every,
-                refresh_below,
-                tops=stall.active,
+                st, length, it, fresh, restart_every, refresh_below, tops=stall.active
             )
-            blocks.ran(taken == n, taken, rr_max / es)
+            blocks.ran(taken == length, taken, rr_max / es)
             if taken:
                 for r_top in tops[: taken - 1]:  # the stall guard sees every top
                     stall(r_top / es)
@@ -284,7 +279,7 @@ def minimize_energy_bounded(
                 it, exact = it + taken, False
                 w, kw, gap, mu, active, free, rr, _, _, s, z_old, gz_old, active_old = st
                 ahead = ((gap, mu, active, free, rr), (rr_max, n_free))
-                host_step = taken < n  # a step froze there: the host takes that one
+                host_step = taken < length  # a step froze there: the host takes that one
                 continue
         host_step = False
         it += 1

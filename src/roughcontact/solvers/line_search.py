@@ -21,15 +21,16 @@ def _device_guess(interaction, sa, ga, c0, c1, curv, slope0, work):
     return hi, p, c0 + hi * c1 - vdot(sa, p)
 
 
-def device_guess(interaction, gap, s, kw, ks, slope0, work):
-    """Off NumPy, on every site: :func:`line_minimum`'s first guess ``(hi, f_hi)`` along
-    ``s`` from ``gap`` (device scalars; the same values as there): it is taken when
-    ``|f_hi| <= rtol |slope0|``."""
-    c0 = vdot(s, kw)
+def device_guess(interaction, gap, s, ks, slope0, work, *, kw=None, elastic_slope=None):
+    """Off NumPy, on every site: :func:`line_minimum`'s first guess along ``s`` from
+    ``gap``, as device scalars with the same values as there: ``(hi, f_hi, p)``, the
+    guess, the slope there and the interaction pressure there. It is taken when
+    ``|f_hi| <= rtol |slope0|``. ``elastic_slope`` (``s.kw``) or ``kw`` as there."""
+    c0 = vdot(s, kw) if elastic_slope is None else elastic_slope
     curv = vdot(s * s, interaction.curvature(gap))
     c1 = vdot(s, ks)
-    hi, _, f_hi = _device_guess(interaction, s, gap, c0, c1, curv + c1, slope0, work)
-    return hi, f_hi
+    hi, p, f_hi = _device_guess(interaction, s, gap, c0, c1, curv + c1, slope0, work)
+    return hi, f_hi, p
 
 
 def line_minimum(
