@@ -31,10 +31,14 @@ updates ``K w`` by increments, which is recomputed exactly in float64 as the res
 falls and before convergence is declared, as in :mod:`.smooth`), and a float64 one on
 projected steps (their energy test needs the exact ``K w``).
 
-Off NumPy (a GPU) the scalars (``μ``, inner products, ``beta``) stay 0-d device arrays;
-the host reads them in one transfer at the line search's first guess, with the largest
-feasible step and the residual of the state that guess gives (one host sync for an
-iteration that takes it), and the projection's Newton steps read theirs one transfer each.
+Off NumPy (a GPU) the loop is split into init / step / terminate (:mod:`._blocks`,
+:mod:`._bounded_steps`): the common iteration (the line search's Newton guess taken and
+feasible) is a device step without host sync, its scalars (``μ``, inner products,
+``beta``, the largest feasible step) 0-d device arrays; the host reads the state once per
+block of up to 8 steps. An iteration that needs the host (the bracketing line search, a
+projection onto the wall, whose Newton steps read their scalars one transfer each, an
+exact refresh, convergence) freezes the state and the sequential loop takes it: the same
+iterations and values. The energy is evaluated only for the projected steps' test.
 
 The result's ``pressure`` is the surface traction: the interaction pressure on free
 sites, the elastic pressure (reaction plus adhesion) on the wall. Repulsive sites are

@@ -63,12 +63,20 @@ preconditioner's mean comes from sums it already needs, the line search's elasti
 every full-grid update writes into arrays allocated once per solve (:mod:`._inplace`):
 1.3-1.5x less time per iteration than the same steps with a temporary per expression.
 
-Off NumPy (a GPU) the loop's scalars (inner products, ``beta``, the slope, the rigid mean)
-stay 0-d device arrays and the host reads them in one transfer where it branches: the line
-search's first guess and its slope, with the residual's extremes of the state that guess
-gives (computed before the transfer), so an iteration whose guess is taken makes one host
-sync, else two or three. The interaction is evaluated on every site (a mask, not a gather:
-CuPy's boolean indexing syncs), the 9-3 wall as one fused kernel on CuPy.
+Off NumPy (a GPU) the loop is split into init / step / terminate (:mod:`._blocks`,
+:mod:`._smooth_steps`): the common iteration (the line search's Newton guess taken) is a
+device step that makes no host sync, its scalars (inner products, ``beta``, the slope, the
+rigid mean, the guess) 0-d device arrays and its branches ``where`` selections; the host
+reads the state once per block of up to 8 steps. A step whose state needs the host (the
+guess not taken: the bracketing line search; an exact refresh due; convergence) leaves
+the state unchanged, and the sequential loop takes that iteration: the same iterations
+and values as before. Blocks end before the iterations that refresh the preconditioner's
+stiff sites (the host computes them) and cannot reach a stall guard's patience (the host
+replays the block's residuals through the guards). A free boundary and a ``callback``
+keep the sequential loop, which reads the line search's first guess and slope with the
+residual's extremes of the state that guess gives (one host sync for an accepted guess).
+The interaction is evaluated on every site (a mask, not a gather: CuPy's boolean indexing
+syncs), the 9-3 wall as one fused kernel on CuPy.
 
 Convergence measure (``residual``): the largest force imbalance per unit area,
 ``max |K w - p_int(g)|`` (excluding the uniform mode when it is rigid), divided by the
