@@ -25,31 +25,67 @@ def project_feasible(v, lower, zero_mean: bool):
     xp = array_namespace(v)
     if not zero_mean:
         return xp.maximum(v, lower)
-    # the scalars of each step come to the host together (one transfer: a GPU waits once)
-    lam, lower_sum, v_sum = fetch(xp, [xp.mean(v), vtotal(xp.abs(lower)), vtotal(xp.abs(v))])
+    if not is_numpy_array(v):
+        return _project_on_device(v, lower, xp)
+    lam, lower_sum, v_sum = float(xp.mean(v)), total(xp.abs(lower)), total(xp.abs(v))
     lam, scale = -lam, lower_sum + v_sum + 1e-300
     best, u_best = math.inf, None
-    numpy = is_numpy_array(v)
     for _ in range(200):
         u = xp.maximum(v + lam, lower)
-        if numpy:
-            f = total(u)
-        else:  # the count with the sum, in one transfer
-            free = v + lam > lower
-            f, count = fetch(xp, [vtotal(u), xp.astype(xp.count_nonzero(free), xp.float64)])
+        f = total(u)
         if abs(f) >= best:  # no better at the precision of v (float32 stops here)
             return u_best
         if abs(f) <= 1e-13 * scale:
             break
         best, u_best = abs(f), u
-        if numpy:
-            free = v + lam > lower
-            count = int(xp.count_nonzero(free))
+        count = int(xp.count_nonzero(v + lam > lower))
         if count == 0:  # everything clipped: move to the first breakpoint
             lam = float(xp.max(lower - v))
             continue
         lam -= f / count
     return u
+
+
+#: Newton steps of the projection computed ahead of each transfer off NumPy (it usually
+#: converges in 2-4; the steps not needed are a few elementwise passes)
+NEWTON_AHEAD = 3
+
+
+def _project_on_device(v, lower, xp):
+    """:func:`project_feasible` off NumPy: the same Newton steps, :data:`NEWTON_AHEAD` of
+    them computed on the device before each transfer (one host sync for most projections);
+    the host then takes the sequential loop's decisions on their sums and counts."""
+    f64 = xp.float64
+
+    def ahead(lam):
+        steps = []
+        for _ in range(NEWTON_AHEAD):
+            shift = lam if lam.dtype == v.dtype else xp.astype(lam, v.dtype)  # as a float
+            u = xp.maximum(v + shift, lower)
+            f = vtotal(u)
+            count = xp.astype(xp.count_nonzero(v + shift > lower), f64)
+            steps.append((u, f, count))
+            # everything clipped: to the first breakpoint
+            breakpoint_ = xp.astype(xp.max(lower - v), f64)
+            lam = xp.where(count > 0.0, lam - f / xp.where(count > 0.0, count, 1.0), breakpoint_)
+        return steps, lam
+
+    steps, lam = ahead(-xp.astype(xp.mean(v), f64))
+    head = [vtotal(xp.abs(lower)), vtotal(xp.abs(v))]
+    best, u_best, done = math.inf, None, 0
+    while True:
+        values = fetch(xp, [*head, *(x for _, f, count in steps for x in (f, count))])
+        if head:
+            scale, head = values[0] + values[1] + 1e-300, []
+            values = values[2:]
+        for (u, _, _), f in zip(steps, values[::2], strict=True):
+            done += 1
+            if abs(f) >= best:  # no better at the precision of v (float32 stops here)
+                return u_best
+            if abs(f) <= 1e-13 * scale or done >= 200:
+                return u
+            best, u_best = abs(f), u
+        steps, lam = ahead(lam)
 
 
 def _direction_on_device(xp, rr, z, z_old, s, gz_old, restart, active, active_old):

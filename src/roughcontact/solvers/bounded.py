@@ -143,13 +143,14 @@ def minimize_energy_bounded(
     patch = patch_sites(substrate, h)  # None: every site is on the patch
     work = None if patch is None else Workspace(base, patch)
     lower = -base if patch is None else xp.where(patch, -base, -math.inf)  # no wall off it
-    check_hard_wall_offset(h, substrate, offset)
+    # the offset's check and the heights' rms in one transfer
+    (scale,) = check_hard_wall_offset(h, substrate, offset, also=[xp.std(hf)])
+    scale = scale or substrate.pixel_size
     # single precision for what only steers (the preconditioner) or updates K w by
     # increments (K s); exact float64 K w on projected steps and as ReliableUpdates says
     green = in_single_precision(compliance_operator(substrate, work_grid=True))
     stiff = stiffness_operator(substrate, work_grid=True)
     stiff_single = in_single_precision(stiff)
-    scale = float(xp.std(hf)) or substrate.pixel_size
     on_wall_tol = 1e-12 * scale
 
     def on_patch(x):
@@ -339,7 +340,18 @@ def minimize_energy_bounded(
             w_try = project_feasible(w + alpha * s, lower, rigid)
             kw_try = stiff(w_try)
             e_try = energy(w_try, kw_try)
-            if bool(e_try <= e_cur):
+            if dev:  # the next top's scalars come with the energy test (one transfer)
+                state = top(w_try, kw_try)
+                scalars = [
+                    xp.astype(e_try <= e_cur, f64),
+                    xp.max(xp.abs(state[-1])),
+                    count(state[3]),
+                ]
+                lower_e, *values = fetch(xp, scalars)
+                if lower_e:
+                    ahead = (state, values)
+                    break
+            elif bool(e_try <= e_cur):
                 break
             alpha *= 0.5
         else:
