@@ -10,9 +10,14 @@ conversions to NumPy (``__array__``, ``__dlpack__``: several scalars fetched at 
 array created (``Array._new``) is counted.
 
 "Per iteration" is the marginal count: the same solve run to ``--iterations`` and to
-twice that many iterations (a tolerance it cannot meet), the difference divided by the
-extra iterations, so the set-up and the final result record are not counted. Load
-control's outer search runs whole inner solves; its count is per inner iteration.
+twice that many iterations (``--iterations``, default 6; ``--tol`` 1e-15, which none of
+these problems meets in 12 iterations at 128²: with 20 and 40, as before, several
+converged before 40 and the difference was over a few iterations), the difference
+divided by the extra iterations, so the set-up and the final result record are not
+counted. The
+"whole" columns count a whole solve at the default tolerance (set-up, exact refreshes,
+the convergence test and the result record included) per iteration. Load control's
+outer search runs whole inner solves; its count is per inner iteration.
 
     python benchmarks/host_syncs.py                 # every solver, 128²
     python benchmarks/host_syncs.py --size 64 --json syncs.json
@@ -99,17 +104,22 @@ def problems(n: int):
     ]
 
 
-def measure(run, iterations: int, whole: bool) -> dict:
+def measure_whole(run, iterations: int) -> dict:
+    """Counts per iteration of a whole solve at the default tolerance."""
+    with counting() as c:
+        res = run(iterations * 40, None)
+    its = max(res.iterations, 1)
+    return {k: v / its for k, v in c.items()} | {"iterations": res.iterations}
+
+
+def measure(run, iterations: int, whole: bool, tol: float = 1e-15) -> dict:
     """Marginal counts per iteration (``whole``: per inner iteration of a full solve)."""
     if whole:  # load control: whole inner solves, counted per inner iteration
-        with counting() as c:
-            res = run(iterations * 40, None)
-        its = max(res.iterations, 1)
-        return {k: v / its for k, v in c.items()} | {"iterations": res.iterations}
+        return measure_whole(run, iterations)
     with counting() as a:
-        ra = run(iterations, 1e-15)
+        ra = run(iterations, tol)
     with counting() as b:
-        rb = run(2 * iterations, 1e-15)
+        rb = run(2 * iterations, tol)
     extra = rb.iterations - ra.iterations
     if extra <= 0:
         raise RuntimeError(f"no extra iterations ({ra.iterations} -> {rb.iterations})")
@@ -119,19 +129,21 @@ def measure(run, iterations: int, whole: bool) -> dict:
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--size", type=int, default=128)
-    ap.add_argument("--iterations", type=int, default=20)
+    ap.add_argument("--iterations", type=int, default=6)
     ap.add_argument("--only", nargs="*", help="solver names to run (default: all)")
+    ap.add_argument("--tol", type=float, default=1e-15, help="tolerance of the marginal runs")
     ap.add_argument("--json", metavar="OUT")
     args = ap.parse_args(argv)
     rows = {}
     print(f"array_api_strict, {args.size}², marginal counts per iteration")
-    print(f"{'solver':>16} {'syncs':>7} {'copies':>7} {'arrays':>7}")
+    print(f"{'solver':>16} {'syncs':>7} {'copies':>7} {'arrays':>7}   whole: syncs arrays  its")
     for name, run, whole in problems(args.size):
         if args.only and name not in args.only:
             continue
-        rows[name] = measure(run, args.iterations, whole)
-        r = rows[name]
-        print(f"{name:>16} {r['syncs']:7.2f} {r['copies']:7.2f} {r['arrays']:7.1f}", flush=True)
+        rows[name] = r = measure(run, args.iterations, whole, args.tol)
+        r["whole"] = w = measure_whole(run, args.iterations)
+        line = f"{name:>16} {r['syncs']:7.2f} {r['copies']:7.2f} {r['arrays']:7.1f}   "
+        print(line + f"{w['syncs']:12.2f} {w['arrays']:6.1f} {w['iterations']:4d}", flush=True)
     if args.json:
         with open(args.json, "w") as f:
             json.dump({"size": args.size, "per_iteration": rows}, f, indent=1)

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._backend import array_namespace, is_numpy_array
+from ._backend import array_namespace, is_numpy_array, to_numpy
 from .errors import ParameterError
 
 
@@ -371,17 +371,27 @@ def heights2d(name: str, heights):
     xp = array_namespace(heights)
     if is_numpy_array(heights) and heights.dtype not in (np.float64, np.float32):
         heights = np.asarray(heights, dtype=float)
-    if not bool(xp.all(xp.isfinite(heights))):
+    if is_numpy_array(heights):
+        finite, top = bool(np.isfinite(heights).all()), None
+    elif xp.isdtype(heights.dtype, "real floating"):  # both scalars in one transfer
+        wide = [xp.astype(xp.all(xp.isfinite(heights)), xp.float64), xp.max(xp.abs(heights))]
+        finite, top = (float(v) for v in to_numpy(xp.stack(
+            [v if v.dtype == xp.float64 else xp.astype(v, xp.float64) for v in wide])))  # fmt: skip
+        finite = finite > 0
+    else:
+        finite, top = bool(xp.all(xp.isfinite(heights))), None
+    if not finite:
         raise ParameterError(f"{name} must be finite everywhere (found NaN or inf)")
-    _rms_is_finite(name, heights, xp)
+    _rms_is_finite(name, heights, xp, top)
     return heights
 
 
-def _rms_is_finite(name, heights, xp) -> None:
-    """Reject heights whose rms overflows (checked exactly only when |h| is that large)."""
+def _rms_is_finite(name, heights, xp, top=None) -> None:
+    """Reject heights whose rms overflows (checked exactly only when |h| is that large);
+    ``top``: max |h| when the caller has it."""
     if not xp.isdtype(heights.dtype, "real floating"):
         return
-    top = float(xp.max(xp.abs(heights)))
+    top = float(xp.max(xp.abs(heights))) if top is None else top
     limit = math.sqrt(float(xp.finfo(heights.dtype).max)) * 1e-3
     if top <= limit:
         return

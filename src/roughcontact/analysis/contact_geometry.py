@@ -58,15 +58,19 @@ def perimeter_edges(mask, *, periodic: bool = True) -> int:
     roll(m, 1)``); without, only the bonds inside the window count, so a contact cut by
     the window's edge contributes no perimeter along it.
     """
+    return int(boundary_bonds(mask, periodic=periodic))
+
+
+def boundary_bonds(mask, *, periodic: bool = True):
+    """:func:`perimeter_edges` as a 0-d integer array on the mask's device (no host sync:
+    a caller fetches it with its other scalars)."""
     m = _bool_map(mask)
     xp = array_namespace(m)
     if periodic:
-        return int(xp.count_nonzero(m != xp.roll(m, 1, axis=0))) + int(
-            xp.count_nonzero(m != xp.roll(m, 1, axis=1))
+        return xp.count_nonzero(m != xp.roll(m, 1, axis=0)) + xp.count_nonzero(
+            m != xp.roll(m, 1, axis=1)
         )
-    return int(xp.count_nonzero(m[1:, :] != m[:-1, :])) + int(
-        xp.count_nonzero(m[:, 1:] != m[:, :-1])
-    )
+    return xp.count_nonzero(m[1:, :] != m[:-1, :]) + xp.count_nonzero(m[:, 1:] != m[:, :-1])
 
 
 def perimeter(mask, pixel_size: float = 1.0, *, periodic: bool = True) -> float:

@@ -31,10 +31,14 @@ updates ``K w`` by increments, which is recomputed exactly in float64 as the res
 falls and before convergence is declared, as in :mod:`.smooth`), and a float64 one on
 projected steps (their energy test needs the exact ``K w``).
 
-Off NumPy (a GPU) the scalars (``μ``, inner products, ``beta``) stay 0-d device arrays;
-the host reads them in one transfer at the line search's first guess, with the largest
-feasible step and the residual of the state that guess gives (one host sync for an
-iteration that takes it), and the projection's Newton steps read theirs one transfer each.
+Off NumPy (a GPU) the loop is split into init / step / terminate (:mod:`._blocks`,
+:mod:`._bounded_steps`): the common iteration (the line search's Newton guess taken and
+feasible) is a device step without host sync, its scalars (``μ``, inner products,
+``beta``, the largest feasible step) 0-d device arrays; the host reads the state once per
+block of up to 8 steps. An iteration that needs the host (the bracketing line search, a
+projection onto the wall, whose Newton steps read their scalars one transfer each, an
+exact refresh, convergence) freezes the state and the sequential loop takes it: the same
+iterations and values. The energy is evaluated only for the projected steps' test.
 
 The result's ``pressure`` is the surface traction: the interaction pressure on free
 sites, the elastic pressure (reaction plus adhesion) on the wall. Repulsive sites are
@@ -58,7 +62,10 @@ from .._backend import (
     dtype_name,
     is_numpy_array,
 )
+from ._blocks import Schedule
+from ._bounded_steps import _DeviceSteps
 from ._inplace import Workspace
+from ._projection import _direction_on_device, _projected_gradient_step, project_feasible
 from .fourier import (
     compliance_operator,
     in_single_precision,
@@ -68,50 +75,13 @@ from .fourier import (
 )
 from .inputs import check_hard_wall_offset, check_problem, warm_deflection
 from .line_search import line_minimum
-from .loop_control import ReliableUpdates, StallGuard, stopping
+from .loop_control import RELIABLE_DROP, RELIABLE_EVERY, ReliableUpdates, StallGuard, stopping
 from .observables import make_result
 from .reductions import dot as _dot
-from .reductions import fetch, on_device, total, vdot, vtotal
+from .reductions import fetch, on_device, vdot, vtotal
 from .result import SolveStatus
 
 __all__ = ["minimize_energy_bounded", "project_feasible"]
-
-
-def project_feasible(v, lower, zero_mean: bool):
-    """Euclidean projection of ``v`` onto ``{w >= lower}`` (and ``mean(w) = 0``).
-
-    With the mean constraint the projection is ``max(v + λ, lower)`` with the scalar λ
-    chosen so the mean vanishes: a root of a convex, piecewise-linear, nondecreasing
-    function, found exactly by Newton's method in a few steps.
-    """
-    xp = array_namespace(v)
-    if not zero_mean:
-        return xp.maximum(v, lower)
-    # the scalars of each step come to the host together (one transfer: a GPU waits once)
-    lam, lower_sum, v_sum = fetch(xp, [xp.mean(v), vtotal(xp.abs(lower)), vtotal(xp.abs(v))])
-    lam, scale = -lam, lower_sum + v_sum + 1e-300
-    best, u_best = math.inf, None
-    numpy = is_numpy_array(v)
-    for _ in range(200):
-        u = xp.maximum(v + lam, lower)
-        if numpy:
-            f = total(u)
-        else:  # the count with the sum, in one transfer
-            free = v + lam > lower
-            f, count = fetch(xp, [vtotal(u), xp.astype(xp.count_nonzero(free), xp.float64)])
-        if abs(f) >= best:  # no better at the precision of v (float32 stops here)
-            return u_best
-        if abs(f) <= 1e-13 * scale:
-            break
-        best, u_best = abs(f), u
-        if numpy:
-            free = v + lam > lower
-            count = int(xp.count_nonzero(free))
-        if count == 0:  # everything clipped: move to the first breakpoint
-            lam = float(xp.max(lower - v))
-            continue
-        lam -= f / count
-    return u
 
 
 @computes_on_heights_device
@@ -173,13 +143,14 @@ def minimize_energy_bounded(
     patch = patch_sites(substrate, h)  # None: every site is on the patch
     work = None if patch is None else Workspace(base, patch)
     lower = -base if patch is None else xp.where(patch, -base, -math.inf)  # no wall off it
-    check_hard_wall_offset(h, substrate, offset)
+    # the offset's check and the heights' rms in one transfer
+    (scale,) = check_hard_wall_offset(h, substrate, offset, also=[xp.std(hf)])
+    scale = scale or substrate.pixel_size
     # single precision for what only steers (the preconditioner) or updates K w by
     # increments (K s); exact float64 K w on projected steps and as ReliableUpdates says
     green = in_single_precision(compliance_operator(substrate, work_grid=True))
     stiff = stiffness_operator(substrate, work_grid=True)
     stiff_single = in_single_precision(stiff)
-    scale = float(xp.std(hf)) or substrate.pixel_size
     on_wall_tol = 1e-12 * scale
 
     def on_patch(x):
@@ -222,7 +193,6 @@ def minimize_energy_bounded(
         mean = xp.sum(xp.where(mask, x, 0.0), dtype=f64) / xp.maximum(k, 1.0)
         return xp.where(k > 0.0, mean, fallback())
 
-    e_cur = energy(w, kw)
     s = ks = z_old = None
     gz_old, active_old = 1.0, None
     status, message = SolveStatus.ITERATION_LIMIT, "iteration cap reached"
@@ -258,6 +228,14 @@ def minimize_energy_bounded(
         return (w_, kw_, state), [xp.max(xp.abs(state[-1])), count(state[3])]
 
     ahead, guess = None, {}  # the top's state fetched with the line search; speculate's
+    # off NumPy, blocks of device steps between host syncs (:mod:`._bounded_steps`); a
+    # free boundary (gathers on the patch) and a callback (every iteration) stay here
+    blocks, host_step = None, False
+    if dev and patch is None and callback is None:
+        blocks = Schedule()
+        blocks.wait = 1  # the first step often crosses the wall (a projection): on the host
+        stepper = _DeviceSteps(xp, top, green, stiff_single, masked_mean, in_dt, count,
+                               interaction, rigid, es, Workspace(base))  # fmt: skip
     while True:
         if ahead is None:
             gap, mu, active, free, rr = top(w, kw)
@@ -273,8 +251,7 @@ def minimize_energy_bounded(
             message = f"non-finite state at iteration {it} (check inputs and the interaction)"
             break
         if (update := reliable.check(residual, exact)) == "refresh":
-            kw, exact = stiff(w), True
-            e_cur = energy(w, kw)
+            kw, exact, host_step = stiff(w), True, False
             continue
         if update == "restart":
             s = None  # the conjugate directions were built on a drifted gradient
@@ -285,6 +262,31 @@ def minimize_energy_bounded(
         if callback is not None and it > 0 and callback(it, residual):
             status, message = SolveStatus.CALLBACK, "stopped by callback"
             break
+        if blocks is not None and not host_step and blocks.ready():
+            # device steps from this top (decided above) until one needs the host
+            refresh_below = max(tol, RELIABLE_DROP * reliable.reliable)
+            # the stall guard cannot stop the solve inside the block (it sees its tops after)
+            stall_left = stall.patience - stall.since - 1 if stall.active else max_iter
+            limit = min(RELIABLE_EVERY - reliable.since, max_iter - it, stall_left)
+            length = blocks.next(limit, residual, refresh_below)
+            st = stepper.state(w, kw, gap, mu, active, free, rr, rr_max, n_free, s, z_old,
+                               gz_old, active_old)  # fmt: skip
+            fresh = s is None or active_old is None
+            st, taken, rr_max, n_free, tops = stepper.block(
+                st, length, it, fresh, restart_every, refresh_below, tops=stall.active
+            )
+            blocks.ran(taken == length, taken, rr_max / es)
+            if taken:
+                for r_top in tops[: taken - 1]:  # the stall guard sees every top
+                    stall(r_top / es)
+                for _ in range(taken):
+                    reliable.step()
+                it, exact = it + taken, False
+                w, kw, gap, mu, active, free, rr, _, _, s, z_old, gz_old, active_old = st
+                ahead = ((gap, mu, active, free, rr), (rr_max, n_free))
+                host_step = taken < length  # a step froze there: the host takes that one
+                continue
+        host_step = False
         it += 1
         reliable.step()
         z = xp.where(free, green(rr), 0.0)
@@ -329,16 +331,27 @@ def minimize_energy_bounded(
             else:
                 w += alpha * s
                 kw += alpha * ks
-            e_cur = energy(w, kw)
             exact = False
             continue
         guess.clear()
+        e_cur = energy(w, kw)  # (the energy is only needed here)
         # the step crosses the wall: project it, halve it while it does not lower E
         for _ in range(6):
             w_try = project_feasible(w + alpha * s, lower, rigid)
             kw_try = stiff(w_try)
             e_try = energy(w_try, kw_try)
-            if bool(e_try <= e_cur):
+            if dev:  # the next top's scalars come with the energy test (one transfer)
+                state = top(w_try, kw_try)
+                scalars = [
+                    xp.astype(e_try <= e_cur, f64),
+                    xp.max(xp.abs(state[-1])),
+                    count(state[3]),
+                ]
+                lower_e, *values = fetch(xp, scalars)
+                if lower_e:
+                    ahead = (state, values)
+                    break
+            elif bool(e_try <= e_cur):
                 break
             alpha *= 0.5
         else:
@@ -353,7 +366,7 @@ def minimize_energy_bounded(
                 message = f"no descent along the projected direction at iteration {it}"
                 break
             w_try, kw_try, e_try = step
-        w, kw, e_cur, exact = w_try, kw_try, e_try, True
+        w, kw, exact = w_try, kw_try, True
         s = None  # the face changed: restart the conjugate directions
 
     gap = base + w
@@ -375,42 +388,3 @@ def minimize_energy_bounded(
         repulsive=xp.reshape(traction > 0, shape),
         attractive=xp.reshape(traction < 0, shape),
     )
-
-
-def _direction_on_device(xp, rr, z, z_old, s, gz_old, restart, active, active_old):
-    """The PR+ direction ``-z + beta s``, its slope ``rr.s`` and ``rr.z`` as device scalars
-    (the host branches' values: ``beta = 0`` on a restart, a changed face or ``gz_old =
-    0``; a direction that does not descend becomes ``-z``)."""
-    gz = vdot(rr, z)
-    if restart:
-        s = -z
-    else:
-        zero = xp.zeros((), dtype=xp.float64, device=array_device(rr))
-        pr = (gz - vdot(rr, z_old)) / xp.where(gz_old == zero, 1.0, gz_old)
-        keep = ~xp.any(active != active_old) & (gz_old != zero)
-        beta = xp.where(keep, xp.maximum(pr, zero), zero)
-        s = -z + (beta if beta.dtype == s.dtype else xp.astype(beta, s.dtype)) * s
-    slope0 = vdot(rr, s)
-    ascent = slope0 >= 0.0
-    return xp.where(ascent, -z, s), xp.where(ascent, -gz, slope0), gz
-
-
-def _projected_gradient_step(w, kw, rr, e_cur, lower, rigid, stiff, energy, interaction, gap, work):
-    """A projected steepest-descent step that lowers E, or None (Bertsekas 1976).
-
-    The direction ``-rr`` (zero on the active face; zero-mean with a rigid mean) starts
-    at the line minimum of E along it and is halved until the projected state lowers the
-    energy; for a small enough step it always does unless ``w`` is stationary.
-    """
-    s = -rr
-    ks = stiff(s)
-    alpha = line_minimum(interaction, gap, s, kw, ks, -_dot(rr, rr), work=work)
-    alpha = alpha if math.isfinite(alpha) and alpha > 0 else 1.0
-    for _ in range(40):
-        w_try = project_feasible(w + alpha * s, lower, rigid)
-        kw_try = stiff(w_try)
-        e_try = energy(w_try, kw_try)
-        if e_try < e_cur:
-            return w_try, kw_try, e_try
-        alpha *= 0.5
-    return None

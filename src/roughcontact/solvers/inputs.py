@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import contextlib
+import contextvars
 import math
 
 import numpy as np
@@ -15,11 +17,13 @@ from .._backend import (
     to_numpy,
 )
 from .._validate import ParameterError, heights2d, real_array, tolerance
+from .reductions import fetch
 
 __all__ = [
     "DEFAULT_TOL",
     "check_hard_wall_offset",
     "check_problem",
+    "checked_heights",
     "lowest_hard_wall_offset",
     "warm_deflection",
 ]
@@ -31,6 +35,22 @@ __all__ = [
 DEFAULT_TOL = {"float64": 1e-8, "float32": 1e-6}
 
 
+#: The heights a caller has checked already (see :func:`checked_heights`).
+_CHECKED: contextvars.ContextVar = contextvars.ContextVar("checked_heights", default=None)
+
+
+@contextlib.contextmanager
+def checked_heights(heights):
+    """Within the block, :func:`check_problem` trusts ``heights`` (this very array, which
+    it returned): a caller that solves many problems on it (load control's inner solves)
+    does not check them again (on a GPU each check waits for the device)."""
+    token = _CHECKED.set(heights)
+    try:
+        yield heights
+    finally:
+        _CHECKED.reset(token)
+
+
 def check_problem(heights, substrate, tol, offset=None, device=None, dtype=None):
     """Validate the common inputs; return ``(heights, tol)`` ready for the solvers.
 
@@ -39,8 +59,11 @@ def check_problem(heights, substrate, tol, offset=None, device=None, dtype=None)
     None gives :data:`DEFAULT_TOL` for that precision; in float32 a tolerance below its
     floor is rejected (it could never be met).
     """
-    heights = real_array("heights", heights)  # before to_device casts complex or bool
-    h = heights2d("heights", to_device(heights, device, dtype or "float64"))
+    if heights is _CHECKED.get():  # checked by the caller (see checked_heights)
+        h = to_device(heights, device, dtype or "float64")
+    else:
+        heights = real_array("heights", heights)  # before to_device casts complex or bool
+        h = heights2d("heights", to_device(heights, device, dtype or "float64"))
     if is_numpy_array(h):
         h = np.ascontiguousarray(h)
     if tuple(h.shape) != substrate.shape:
@@ -66,20 +89,25 @@ def lowest_hard_wall_offset(heights, substrate) -> float:
     return float(array_namespace(heights).mean(heights))
 
 
-def check_hard_wall_offset(heights, substrate, offset) -> None:
-    """Reject an offset below :func:`lowest_hard_wall_offset` (no impenetrable state)."""
-    mean = lowest_hard_wall_offset(heights, substrate)
-    if offset is None or mean == -math.inf:
-        return
+def check_hard_wall_offset(heights, substrate, offset, also=()) -> list[float]:
+    """Reject an offset below :func:`lowest_hard_wall_offset` (no impenetrable state).
+
+    ``also``: the caller's device scalars, returned as floats from the same transfer.
+    """
     xp = array_namespace(heights)
+    if offset is None or not substrate.rigid_mean:
+        return fetch(xp, list(also))
+    # lowest_hard_wall_offset (the mean) and max|h| in one transfer (a GPU waits once)
+    mean, top, *also = fetch(xp, [xp.mean(heights), xp.max(xp.abs(heights)), *also])
     # the mean's rounding in the heights' precision (float32: ~1e-7 of max|h|), so that
     # float32 accepts the offsets float64 accepts (d = 0 on a mean-zero surface)
     slack = max(1e-12, 64 * float(xp.finfo(heights.dtype).eps))
-    if offset < mean - slack * (float(xp.max(xp.abs(heights))) + abs(offset)):
+    if offset < mean - slack * (top + abs(offset)):
         raise ParameterError(
             f"offset must be >= mean(heights) = {mean:g} for a hard wall on a substrate with "
             f"a rigid mean (got {offset:g}: the surfaces would overlap everywhere)"
         )
+    return also
 
 
 def warm_deflection(initial, substrate, heights, compliance):

@@ -8,7 +8,29 @@ from ._inplace import Workspace
 from .reductions import dot, fetch, on_device, vdot
 from .roots import bracketed_root
 
-__all__ = ["line_minimum"]
+__all__ = ["device_guess", "line_minimum"]
+
+
+def _device_guess(interaction, sa, ga, c0, c1, curv, slope0, work):
+    """The Newton guess ``hi`` of :func:`line_minimum` with the curvature ``curv`` at
+    alpha = 0, the interaction pressure ``p`` there and the slope ``f_hi``: device scalars."""
+    xp = work.xp
+    hi = xp.where(curv > 0.0, -slope0 / xp.where(curv > 0.0, curv, 1.0), 1.0)
+    hi = xp.minimum(xp.maximum(hi, 1e-8), 4.0)
+    p = interaction.pressure(ga + work.scalar(hi, ga) * sa)
+    return hi, p, c0 + hi * c1 - vdot(sa, p)
+
+
+def device_guess(interaction, gap, s, ks, slope0, work, *, kw=None, elastic_slope=None):
+    """Off NumPy, on every site: :func:`line_minimum`'s first guess along ``s`` from
+    ``gap``, as device scalars with the same values as there: ``(hi, f_hi, p)``, the
+    guess, the slope there and the interaction pressure there. It is taken when
+    ``|f_hi| <= rtol |slope0|``. ``elastic_slope`` (``s.kw``) or ``kw`` as there."""
+    c0 = vdot(s, kw) if elastic_slope is None else elastic_slope
+    curv = vdot(s * s, interaction.curvature(gap))
+    c1 = vdot(s, ks)
+    hi, p, f_hi = _device_guess(interaction, s, gap, c0, c1, curv + c1, slope0, work)
+    return hi, f_hi, p
 
 
 def line_minimum(
@@ -78,11 +100,8 @@ def line_minimum(
         # a GPU: the guess and the slope there as device scalars, to the host in one
         # transfer with the line's other scalars (one host sync for an accepted guess)
         xp = work.xp
-        hi = xp.where(curv > 0.0, -slope0 / xp.where(curv > 0.0, curv, 1.0), 1.0)
-        hi = xp.minimum(xp.maximum(hi, 1e-8), 4.0)
-        p = interaction.pressure(ga + work.scalar(hi, ga) * sa)
+        hi, p, f_hi = _device_guess(interaction, sa, ga, c0, c1, curv, slope0, work)
         last.update(pressure=p, sites=sites)
-        f_hi = c0 + hi * c1 - vdot(sa, p)
         state, ahead = speculate(hi, p) if speculate is not None else (None, [])
         k = len(also)
         c0, c1, slope0, hi, f_hi, *rest = fetch(xp, [c0, c1, slope0, hi, f_hi, *also, *ahead])

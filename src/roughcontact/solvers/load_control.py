@@ -23,7 +23,7 @@ import math
 import time
 
 from .._backend import array_namespace, dtype_name
-from .inputs import check_problem, lowest_hard_wall_offset
+from .inputs import check_problem, checked_heights, lowest_hard_wall_offset
 from .result import SolveStatus
 from .roots import false_position, illinois
 
@@ -60,10 +60,11 @@ def solve_at_load(
     def evaluate(d):
         near = min(states, key=lambda x: abs(x - d)) if states else None
         start = states[near] if near is not None else initial
-        res = minimize(
-            heights, substrate, interaction, offset=d, initial=start, tol=tol,
-            max_iter=max_iter, callback=callback, dtype=dtype,
-        )  # fmt: skip
+        with checked_heights(heights):  # checked above: not again in every inner solve
+            res = minimize(
+                heights, substrate, interaction, offset=d, initial=start, tol=tol,
+                max_iter=max_iter, callback=callback, dtype=dtype,
+            )  # fmt: skip
         total["it"] += res.iterations
         states[d] = res
         return res

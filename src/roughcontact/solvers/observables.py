@@ -5,14 +5,9 @@ from __future__ import annotations
 import numpy as np
 
 from .._backend import array_namespace
-from ..analysis.contact_geometry import perimeter_edges
+from ..analysis.contact_geometry import boundary_bonds
+from .reductions import fetch
 from .result import ContactResult, SolveStatus
-
-
-def _sum64(x) -> float:
-    """Sum of ``x`` accumulated in float64, also for float32 fields (single precision)."""
-    xp = array_namespace(x)
-    return float(xp.sum(x, dtype=xp.float64))
 
 
 def make_result(
@@ -46,21 +41,27 @@ def make_result(
         repulsive = pressure > 0
     if attractive is None:
         attractive = xp.zeros_like(repulsive)
-    rep_load = _sum64(pressure[repulsive]) / n
-    att_load = -_sum64(pressure[attractive]) / n
     # a free-boundary solve is a window: its edge is not a contact boundary
-    edges = perimeter_edges(repulsive, periodic=substrate.periodic)
+    # the record's scalars in one transfer (a GPU waits once)
+    f64 = xp.float64
+    sums = fetch(xp, [
+        xp.sum(pressure[repulsive], dtype=f64), xp.sum(pressure[attractive], dtype=f64),
+        xp.sum(pressure, dtype=f64), xp.sum(gap, dtype=f64), xp.count_nonzero(repulsive),
+        xp.count_nonzero(attractive), boundary_bonds(repulsive, periodic=substrate.periodic),
+    ])  # fmt: skip
+    p_rep, p_att, p_all, gap_sum, n_rep, n_att, edges = sums
+    edges = int(edges)
     a0 = substrate.pixel_size
     return ContactResult(
         offset=float(offset),
-        load=_sum64(pressure) / n,
-        repulsive_load=rep_load,
-        attractive_load=att_load,
-        repulsive_area=float(xp.count_nonzero(repulsive)) / n,
-        attractive_area=float(xp.count_nonzero(attractive)) / n,
+        load=p_all / n,
+        repulsive_load=p_rep / n,
+        attractive_load=-p_att / n,
+        repulsive_area=n_rep / n,
+        attractive_area=n_att / n,
         perimeter=edges * np.pi / 4 * a0 / substrate.nominal_area,
         perimeter_edges=edges,
-        mean_gap=_sum64(gap) / n,
+        mean_gap=gap_sum / n,
         iterations=int(iterations),
         residual=float(residual),
         converged=status is SolveStatus.CONVERGED,

@@ -72,7 +72,12 @@ Two implementations of the same iteration: on NumPy the vector work runs on inde
 of the contact set (a few per cent of the grid at small loads, so cheaper than full-grid
 passes on a CPU); on any other array-API backend (CuPy on a GPU) on full-grid masks
 (:mod:`._pk_dense`), because array-API arrays have no integer-array assignment and a
-GPU does full-grid passes at memory bandwidth. Both take the same steps (tested).
+GPU does full-grid passes at memory bandwidth. The latter is split into init / step /
+terminate (:mod:`._blocks`): a step makes no host sync (its branches are ``where``
+selections, the projection and the correction's convolution are unconditional) and the
+host reads a few scalars once per block of up to 8 steps; a step whose state needs a host
+decision (an exact refresh, convergence, a lost contact set) leaves it unchanged, so both
+loops take the same steps and report the same iterations (tested).
 """
 
 from __future__ import annotations
