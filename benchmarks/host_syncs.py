@@ -21,6 +21,12 @@ outer search runs whole inner solves; its count is per inner iteration.
 
     python benchmarks/host_syncs.py                 # every solver, 128²
     python benchmarks/host_syncs.py --size 64 --json syncs.json
+    python benchmarks/host_syncs.py --only smooth --by-line   # per source line
+
+``--by-line`` charges every array and sync to the innermost frame in roughcontact's
+source (``file:line``), so that the counts can be attributed to the operations of the
+method (an array made inside array_api_strict or array_api_compat is charged to the
+solver line that called it).
 
 Targets (issue 34): at most 2 syncs and 40 arrays per iteration for every solver.
 """
@@ -28,8 +34,10 @@ Targets (issue 34): at most 2 syncs and 40 arrays per iteration for every solver
 from __future__ import annotations
 
 import argparse
+import collections
 import contextlib
 import json
+import os
 import sys
 
 import roughcontact as rc
@@ -40,12 +48,38 @@ COPIES = ("__array__", "__dlpack__")
 SMALL = 16
 
 
+#: the package's source folder: frames there are the solver code an array is charged to
+PACKAGE = os.path.dirname(os.path.abspath(rc.__file__)) + os.sep
+
+
+#: helpers charged to their caller (with themselves named: "caller:line via helper:line")
+HELPERS = ("_backend.py", os.path.join("solvers", "reductions.py"))
+
+
+def _site():
+    """``file:line`` of the innermost frame in roughcontact's code that is not a helper
+    (:data:`HELPERS`): the solver line that made the array or the sync; where a helper
+    made it, ``... via helper:line`` names the helper's line too."""
+    frame, via = sys._getframe(2), None
+    while frame is not None:
+        path = frame.f_code.co_filename
+        if path.startswith(PACKAGE):
+            here = f"{path[len(PACKAGE) :]}:{frame.f_lineno}"
+            if not path.endswith(HELPERS):
+                return here if via is None else f"{here} via {via}"
+            via = via or here
+        frame = frame.f_back
+    return via or "(outside roughcontact)"
+
+
 @contextlib.contextmanager
-def counting():
-    """Counts of syncs, host copies and arrays created by array_api_strict in the block."""
+def counting(by_line: bool = False):
+    """Counts of syncs, host copies and arrays created by array_api_strict in the block;
+    ``by_line``: also ``counts["lines"][kind][file:line]`` (see :func:`_site`)."""
     from array_api_strict._array_object import Array
 
     counts = {"syncs": 0, "copies": 0, "arrays": 0}
+    lines = {"syncs": collections.Counter(), "arrays": collections.Counter()}
     saved = {name: Array.__dict__[name] for name in (*SYNCS, *COPIES, "_new")}
 
     def wrap(name, copy=False):
@@ -54,6 +88,8 @@ def counting():
         def hook(self, *args, **kwargs):
             # any transfer waits for the device; more than a few elements is also a copy
             counts["syncs"] += 1
+            if by_line:
+                lines["syncs"][_site()] += 1
             if copy and (self.size is None or self.size > SMALL):
                 counts["copies"] += 1
             return original(self, *args, **kwargs)
@@ -68,6 +104,8 @@ def counting():
 
     def counted_new(cls, *args, **kwargs):
         counts["arrays"] += 1
+        if by_line:
+            lines["arrays"][_site()] += 1
         return new(cls, *args, **kwargs)
 
     Array._new = classmethod(counted_new)
@@ -76,6 +114,8 @@ def counting():
     finally:
         for name, value in saved.items():
             setattr(Array, name, value)
+        if by_line:
+            counts["lines"] = lines
 
 
 def problems(n: int):
@@ -104,26 +144,57 @@ def problems(n: int):
     ]
 
 
-def measure_whole(run, iterations: int) -> dict:
+def _per_line(b, a, divisor):
+    """The per-line counters of ``b`` less those of ``a`` (or none), per ``divisor``."""
+    out = {}
+    for kind, counter in b["lines"].items():
+        diff = counter.copy()
+        if a is not None:
+            diff.subtract(a["lines"][kind])
+        out[kind] = {k: v / divisor for k, v in diff.most_common() if v}
+    return out
+
+
+def measure_whole(run, iterations: int, by_line: bool = False) -> dict:
     """Counts per iteration of a whole solve at the default tolerance."""
-    with counting() as c:
+    with counting(by_line) as c:
         res = run(iterations * 40, None)
     its = max(res.iterations, 1)
-    return {k: v / its for k, v in c.items()} | {"iterations": res.iterations}
+    got = {k: c[k] / its for k in ("syncs", "copies", "arrays")} | {"iterations": res.iterations}
+    if by_line:
+        got["lines"] = _per_line(c, None, its)
+    return got
 
 
-def measure(run, iterations: int, whole: bool, tol: float = 1e-15) -> dict:
-    """Marginal counts per iteration (``whole``: per inner iteration of a full solve)."""
+def measure(run, iterations: int, whole: bool, tol: float = 1e-15, by_line: bool = False) -> dict:
+    """Marginal counts per iteration (``whole``: per inner iteration of a full solve);
+    ``by_line``: also per source line (``result["lines"][kind]``, see :func:`counting`)."""
     if whole:  # load control: whole inner solves, counted per inner iteration
-        return measure_whole(run, iterations)
-    with counting() as a:
+        return measure_whole(run, iterations, by_line)
+    with counting(by_line) as a:
         ra = run(iterations, tol)
-    with counting() as b:
+    with counting(by_line) as b:
         rb = run(2 * iterations, tol)
     extra = rb.iterations - ra.iterations
     if extra <= 0:
         raise RuntimeError(f"no extra iterations ({ra.iterations} -> {rb.iterations})")
-    return {k: (b[k] - a[k]) / extra for k in a} | {"iterations": rb.iterations}
+    keys = ("syncs", "copies", "arrays")
+    got = {k: (b[k] - a[k]) / extra for k in keys} | {"iterations": rb.iterations}
+    if by_line:
+        got["lines"] = _per_line(b, a, extra)
+    return got
+
+
+def print_lines(name: str, lines: dict, top: int) -> None:
+    """The ``top`` source lines of each kind, per iteration, largest first."""
+    for kind, per in lines.items():
+        shown = list(per.items())[:top]
+        rest = sum(per.values()) - sum(v for _, v in shown)
+        print(f"  {name} {kind} per iteration by line ({sum(per.values()):.2f} in all):")
+        for site, v in shown:
+            print(f"    {v:7.2f}  {site}")
+        if len(per) > top:
+            print(f"    {rest:7.2f}  ({len(per) - top} more lines)")
 
 
 def main(argv=None) -> int:
@@ -133,6 +204,13 @@ def main(argv=None) -> int:
     ap.add_argument("--only", nargs="*", help="solver names to run (default: all)")
     ap.add_argument("--tol", type=float, default=1e-15, help="tolerance of the marginal runs")
     ap.add_argument("--json", metavar="OUT")
+    ap.add_argument(
+        "--by-line",
+        action="store_true",
+        help="also the counts per roughcontact source line (file:line that made each array "
+        "or sync), marginal and whole",
+    )
+    ap.add_argument("--top", type=int, default=25, help="lines shown per solver with --by-line")
     args = ap.parse_args(argv)
     rows = {}
     print(f"array_api_strict, {args.size}², marginal counts per iteration")
@@ -140,10 +218,14 @@ def main(argv=None) -> int:
     for name, run, whole in problems(args.size):
         if args.only and name not in args.only:
             continue
-        rows[name] = r = measure(run, args.iterations, whole, args.tol)
-        r["whole"] = w = measure_whole(run, args.iterations)
+        rows[name] = r = measure(run, args.iterations, whole, args.tol, args.by_line)
+        r["whole"] = w = measure_whole(run, args.iterations, args.by_line)
         line = f"{name:>16} {r['syncs']:7.2f} {r['copies']:7.2f} {r['arrays']:7.1f}   "
         print(line + f"{w['syncs']:12.2f} {w['arrays']:6.1f} {w['iterations']:4d}", flush=True)
+        if args.by_line:
+            if not whole:
+                print_lines(f"{name} (marginal)", r["lines"], args.top)
+            print_lines(f"{name} (whole)", w["lines"], args.top)
     if args.json:
         with open(args.json, "w") as f:
             json.dump({"size": args.size, "per_iteration": rows}, f, indent=1)

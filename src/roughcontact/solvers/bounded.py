@@ -136,7 +136,6 @@ def minimize_energy_bounded(
     es = substrate.contact_modulus
     rigid = substrate.rigid_mean
     xp = array_namespace(h)
-    hf = xp.reshape(h, (-1,))
     # the variable lives on the work grid (the patch itself unless the boundary is free)
     base = on_work_grid(substrate, offset - h)  # gap = base + w
     n = base.shape[0]
@@ -144,7 +143,8 @@ def minimize_energy_bounded(
     work = None if patch is None else Workspace(base, patch)
     lower = -base if patch is None else xp.where(patch, -base, -math.inf)  # no wall off it
     # the offset's check and the heights' rms in one transfer
-    (scale,) = check_hard_wall_offset(h, substrate, offset, also=[xp.std(hf)])
+    # (none where load control's checked heights bring their statistics)
+    (scale,) = check_hard_wall_offset(h, substrate, offset, also=["std"])
     scale = scale or substrate.pixel_size
     # single precision for what only steers (the preconditioner) or updates K w by
     # increments (K s); exact float64 K w on projected steps and as ReliableUpdates says

@@ -24,6 +24,7 @@ __all__ = [
     "check_hard_wall_offset",
     "check_problem",
     "checked_heights",
+    "height_statistics",
     "lowest_hard_wall_offset",
     "warm_deflection",
 ]
@@ -37,18 +38,36 @@ DEFAULT_TOL = {"float64": 1e-8, "float32": 1e-6}
 
 #: The heights a caller has checked already (see :func:`checked_heights`).
 _CHECKED: contextvars.ContextVar = contextvars.ContextVar("checked_heights", default=None)
+#: ... and their statistics (see :func:`height_statistics`), or None.
+_STATISTICS: contextvars.ContextVar = contextvars.ContextVar("height_stats", default=None)
 
 
 @contextlib.contextmanager
-def checked_heights(heights):
+def checked_heights(heights, statistics=None):
     """Within the block, :func:`check_problem` trusts ``heights`` (this very array, which
     it returned): a caller that solves many problems on it (load control's inner solves)
-    does not check them again (on a GPU each check waits for the device)."""
+    does not check them again (on a GPU each check waits for the device).
+    ``statistics``: :func:`height_statistics` of them, which the solvers then reuse."""
     token = _CHECKED.set(heights)
+    token_stats = _STATISTICS.set(statistics)
     try:
         yield heights
     finally:
+        _STATISTICS.reset(token_stats)
         _CHECKED.reset(token)
+
+
+def height_statistics(heights) -> dict[str, float]:
+    """The heights' mean, largest magnitude (``top``), largest value (``max``) and rms
+    about the mean (``std``, of the flat array as the solvers take it), in one transfer;
+    those of :func:`checked_heights`' block when given there (no transfer)."""
+    known = _STATISTICS.get()
+    if known is not None and heights is _CHECKED.get():
+        return known
+    xp = array_namespace(heights)
+    values = fetch(xp, [xp.mean(heights), xp.max(xp.abs(heights)), xp.max(heights),
+                        xp.std(xp.reshape(heights, (-1,)))])  # fmt: skip
+    return dict(zip(("mean", "top", "max", "std"), values, strict=True))
 
 
 def check_problem(heights, substrate, tol, offset=None, device=None, dtype=None):
@@ -92,13 +111,25 @@ def lowest_hard_wall_offset(heights, substrate) -> float:
 def check_hard_wall_offset(heights, substrate, offset, also=()) -> list[float]:
     """Reject an offset below :func:`lowest_hard_wall_offset` (no impenetrable state).
 
-    ``also``: the caller's device scalars, returned as floats from the same transfer.
+    ``also``: the caller's device scalars, returned as floats from the same transfer;
+    or the names of :func:`height_statistics` (their values, from the statistics that a
+    :func:`checked_heights` block gives: no transfer).
     """
     xp = array_namespace(heights)
-    if offset is None or not substrate.rigid_mean:
-        return fetch(xp, list(also))
-    # lowest_hard_wall_offset (the mean) and max|h| in one transfer (a GPU waits once)
-    mean, top, *also = fetch(xp, [xp.mean(heights), xp.max(xp.abs(heights)), *also])
+    known = _STATISTICS.get() if heights is _CHECKED.get() else None
+    if known is not None and all(isinstance(x, str) for x in also):
+        mean, top, also = known["mean"], known["top"], [known[x] for x in also]
+        if offset is None or not substrate.rigid_mean:
+            return also
+    else:
+        flat = xp.reshape(heights, (-1,))
+        named = {"mean": xp.mean, "top": lambda x: xp.max(xp.abs(x)), "max": xp.max}
+        named["std"] = xp.std
+        also = [named[x](flat) if isinstance(x, str) else x for x in also]
+        if offset is None or not substrate.rigid_mean:
+            return fetch(xp, also)
+        # lowest_hard_wall_offset (the mean) and max|h| in one transfer (a GPU waits once)
+        mean, top, *also = fetch(xp, [xp.mean(heights), xp.max(xp.abs(heights)), *also])
     # the mean's rounding in the heights' precision (float32: ~1e-7 of max|h|), so that
     # float32 accepts the offsets float64 accepts (d = 0 on a mean-zero surface)
     slack = max(1e-12, 64 * float(xp.finfo(heights.dtype).eps))

@@ -21,6 +21,17 @@ def _device_guess(interaction, sa, ga, c0, c1, curv, slope0, work):
     return hi, p, c0 + hi * c1 - vdot(sa, p)
 
 
+def _device_next(xp, hi, f_hi, slope0):
+    """The point :func:`line_minimum` evaluates after a guess ``hi`` not taken, as a device
+    scalar with the host's value: ``2 hi`` (bracketing, ``f_hi < 0``), else the first
+    regula falsi point of ``[0, hi]`` (:func:`.roots.false_position`, as
+    :func:`.roots.bracketed_root` takes it first)."""
+    d = f_hi - slope0
+    x = (0.0 * f_hi - hi * slope0) / xp.where(d != 0.0, d, 1.0)
+    inside = (d != 0.0) & (x > 0.0) & (x < hi)  # hi > 0: min(0, hi) = 0
+    return xp.where(f_hi < 0.0, 2.0 * hi, xp.where(inside, x, 0.5 * (0.0 + hi)))
+
+
 def device_guess(interaction, gap, s, ks, slope0, work, *, kw=None, elastic_slope=None):
     """Off NumPy, on every site: :func:`line_minimum`'s first guess along ``s`` from
     ``gap``, as device scalars with the same values as there: ``(hi, f_hi, p)``, the
@@ -77,13 +88,19 @@ def line_minimum(
     sites = work.band(gap, s, 4.0, interaction.cutoff) if band else work.patch
     sa, ga = (s, gap) if sites is None else (s[sites], gap[sites])
     last = {}
+    ahead = {}  # off NumPy: the next point's slope, computed with the guess (see below)
 
     def slope(alpha):
+        if ahead and alpha == ahead["alpha"] and sites is ahead["sites"]:
+            last.update(pressure=ahead["pressure"], sites=sites)
+            return ahead["slope"]
         p = interaction.pressure(ga + alpha * sa)
         last.update(pressure=p, sites=sites)
         return c0 + alpha * c1 - dot(sa, p)
 
     def result(alpha):
+        if speculated is not None and ahead and alpha == ahead["alpha"]:
+            speculated.update(state=ahead["state"], values=ahead["values"])
         if not with_pressure:
             return alpha
         if not math.isfinite(alpha):
@@ -98,16 +115,27 @@ def line_minimum(
     curv = curv + c1
     if on_device(curv):
         # a GPU: the guess and the slope there as device scalars, to the host in one
-        # transfer with the line's other scalars (one host sync for an accepted guess)
+        # transfer with the line's other scalars (one host sync for an accepted guess);
+        # the point evaluated next if it is not taken (a doubling or the first regula
+        # falsi point) and its slope (and the caller's state there) come in the same
+        # transfer: one host sync instead of two (three with the caller's next top)
         xp = work.xp
         hi, p, f_hi = _device_guess(interaction, sa, ga, c0, c1, curv, slope0, work)
         last.update(pressure=p, sites=sites)
-        state, ahead = speculate(hi, p) if speculate is not None else (None, [])
-        k = len(also)
-        c0, c1, slope0, hi, f_hi, *rest = fetch(xp, [c0, c1, slope0, hi, f_hi, *also, *ahead])
+        state, guessed = speculate(hi, p) if speculate is not None else (None, [])
+        nxt = _device_next(xp, hi, f_hi, slope0)
+        p_nxt = interaction.pressure(ga + work.scalar(nxt, ga) * sa)
+        f_nxt = c0 + nxt * c1 - vdot(sa, p_nxt)
+        state_nxt, nexts = speculate(nxt, p_nxt) if speculate is not None else (None, [])
+        k, m = len(also), len(guessed)
+        c0, c1, slope0, hi, f_hi, x_nxt, f_x, *rest = fetch(
+            xp, [c0, c1, slope0, hi, f_hi, nxt, f_nxt, *also, *guessed, *nexts]
+        )
         also[:] = rest[:k]
         if speculate is not None and abs(f_hi) <= rtol * abs(slope0):
-            speculated.update(state=state, values=rest[k:])
+            speculated.update(state=state, values=rest[k : k + m])
+        ahead.update(alpha=x_nxt, slope=f_x, pressure=p_nxt, sites=sites)
+        ahead.update(state=state_nxt, values=rest[k + m :])
     else:
         also[:] = fetch(work.xp, also)
         hi = -slope0 / curv if curv > 0 else 1.0

@@ -22,8 +22,8 @@ import dataclasses
 import math
 import time
 
-from .._backend import array_namespace, dtype_name
-from .inputs import check_problem, checked_heights, lowest_hard_wall_offset
+from .._backend import dtype_name
+from .inputs import check_problem, checked_heights, height_statistics
 from .result import SolveStatus
 from .roots import false_position, illinois
 
@@ -52,15 +52,16 @@ def solve_at_load(
     heights = h
     load_tol = tol * substrate.contact_modulus
     dtype = dtype_name(h)
-    xp = array_namespace(h)
-    scale = max(float(xp.std(h)), substrate.pixel_size)
+    # the heights' statistics in one transfer, which the inner solves reuse (no transfer)
+    stats = height_statistics(h)
+    scale = max(stats["std"], substrate.pixel_size)
     states: dict[float, object] = {}
     total = {"it": 0}
 
     def evaluate(d):
         near = min(states, key=lambda x: abs(x - d)) if states else None
         start = states[near] if near is not None else initial
-        with checked_heights(heights):  # checked above: not again in every inner solve
+        with checked_heights(heights, stats):  # checked above: not again in every inner solve
             res = minimize(
                 heights, substrate, interaction, offset=d, initial=start, tol=tol,
                 max_iter=max_iter, callback=callback, dtype=dtype,
@@ -95,7 +96,7 @@ def solve_at_load(
     if initial is not None and hasattr(initial, "offset"):
         d_a = float(initial.offset)
     else:
-        d_a = float(xp.max(h)) + (interaction.equilibrium_distance or 0.0)  # None: hard core
+        d_a = stats["max"] + (interaction.equilibrium_distance or 0.0)  # None: hard core
     res_a = evaluate(d_a)
     f_a = res_a.load - load
     if not res_a.converged or abs(f_a) <= load_tol:
@@ -105,7 +106,10 @@ def solve_at_load(
     step = 0.01 * scale
     # a hard core admits no offset at or below its lowest one (the surfaces would overlap
     # everywhere): approach that bound by halving instead
-    lowest = lowest_hard_wall_offset(h, substrate) if interaction.hard_core else -math.inf
+    # (lowest_hard_wall_offset: the mean with a rigid mean)
+    lowest = -math.inf
+    if interaction.hard_core and substrate.rigid_mean:
+        lowest = stats["mean"]
     for _ in range(60):
         keep_only(d_a)
         d_b = d_a + direction * step
