@@ -44,8 +44,13 @@ import roughcontact as rc
 
 SYNCS = ("__float__", "__bool__", "__int__", "__index__", "__complex__")
 COPIES = ("__array__", "__dlpack__")
-#: conversions of arrays of more than this many elements count as host copies
+#: conversions of arrays of more than this many elements count as host copies; arrays
+#: created of more elements count as "fields" too (the others are scalars: array_api_strict
+#: makes one or two for each Python or 0-d scalar operand of an operation on a field,
+#: where CuPy passes the scalar to the one kernel)
 SMALL = 16
+#: the counts measured
+KEYS = ("syncs", "copies", "arrays", "fields")
 
 
 #: the package's source folder: frames there are the solver code an array is charged to
@@ -78,7 +83,7 @@ def counting(by_line: bool = False):
     ``by_line``: also ``counts["lines"][kind][file:line]`` (see :func:`_site`)."""
     from array_api_strict._array_object import Array
 
-    counts = {"syncs": 0, "copies": 0, "arrays": 0}
+    counts = {"syncs": 0, "copies": 0, "arrays": 0, "fields": 0}
     lines = {"syncs": collections.Counter(), "arrays": collections.Counter()}
     saved = {name: Array.__dict__[name] for name in (*SYNCS, *COPIES, "_new")}
 
@@ -106,7 +111,10 @@ def counting(by_line: bool = False):
         counts["arrays"] += 1
         if by_line:
             lines["arrays"][_site()] += 1
-        return new(cls, *args, **kwargs)
+        out = new(cls, *args, **kwargs)
+        if out.size is None or out.size > SMALL:  # a pass over a field, not a scalar
+            counts["fields"] += 1
+        return out
 
     Array._new = classmethod(counted_new)
     try:
@@ -160,7 +168,7 @@ def measure_whole(run, iterations: int, by_line: bool = False) -> dict:
     with counting(by_line) as c:
         res = run(iterations * 40, None)
     its = max(res.iterations, 1)
-    got = {k: c[k] / its for k in ("syncs", "copies", "arrays")} | {"iterations": res.iterations}
+    got = {k: c[k] / its for k in KEYS} | {"iterations": res.iterations}
     if by_line:
         got["lines"] = _per_line(c, None, its)
     return got
@@ -178,8 +186,7 @@ def measure(run, iterations: int, whole: bool, tol: float = 1e-15, by_line: bool
     extra = rb.iterations - ra.iterations
     if extra <= 0:
         raise RuntimeError(f"no extra iterations ({ra.iterations} -> {rb.iterations})")
-    keys = ("syncs", "copies", "arrays")
-    got = {k: (b[k] - a[k]) / extra for k in keys} | {"iterations": rb.iterations}
+    got = {k: (b[k] - a[k]) / extra for k in KEYS} | {"iterations": rb.iterations}
     if by_line:
         got["lines"] = _per_line(b, a, extra)
     return got
@@ -214,14 +221,16 @@ def main(argv=None) -> int:
     args = ap.parse_args(argv)
     rows = {}
     print(f"array_api_strict, {args.size}², marginal counts per iteration")
-    print(f"{'solver':>16} {'syncs':>7} {'copies':>7} {'arrays':>7}   whole: syncs arrays  its")
+    head = f"{'solver':>16} {'syncs':>7} {'copies':>7} {'arrays':>7} {'fields':>7}"
+    print(head + "   whole: syncs arrays fields  its")
     for name, run, whole in problems(args.size):
         if args.only and name not in args.only:
             continue
         rows[name] = r = measure(run, args.iterations, whole, args.tol, args.by_line)
         r["whole"] = w = measure_whole(run, args.iterations, args.by_line)
-        line = f"{name:>16} {r['syncs']:7.2f} {r['copies']:7.2f} {r['arrays']:7.1f}   "
-        print(line + f"{w['syncs']:12.2f} {w['arrays']:6.1f} {w['iterations']:4d}", flush=True)
+        line = f"{name:>16} {r['syncs']:7.2f} {r['copies']:7.2f} {r['arrays']:7.1f} "
+        line += f"{r['fields']:7.1f}   {w['syncs']:12.2f} {w['arrays']:6.1f} {w['fields']:6.1f}"
+        print(line + f" {w['iterations']:4d}", flush=True)
         if args.by_line:
             if not whole:
                 print_lines(f"{name} (marginal)", r["lines"], args.top)

@@ -63,6 +63,25 @@ class Exponential(GapLaw):
         """Largest attractive stress w/ρ (pressure), at g = 0."""
         return self.work_of_adhesion / self.range
 
+    def pressure(self, gap):
+        """p(g) = -V'(g) (pressure; > 0 repulsive)."""
+        if self.core_stiffness is not None:
+            return -self._evaluate(gap)[1]
+        # the solvers' hot path: only this term (the values of ``-_evaluate(gap)[1]``;
+        # max(max(g, 0), 0) = max(g, 0)): a third of the operations, one array pass each
+        return -((self.work_of_adhesion / self.range) * self._decay(gap))
+
+    def curvature(self, gap):
+        """V''(g) (pressure / length)."""
+        if self.core_stiffness is not None:
+            return self._evaluate(gap)[2]
+        return -(self.work_of_adhesion / self.range**2) * self._decay(gap)
+
+    def _decay(self, gap):
+        """exp(-max(g, 0)/ρ) (hard core: the gap clipped at the wall)."""
+        xp, g = as_gap(gap)
+        return xp.exp(-xp.maximum(g, 0.0) / self.range)
+
     def _evaluate(self, gap):
         xp, g = as_gap(gap)
         w, rho = self.work_of_adhesion, self.range

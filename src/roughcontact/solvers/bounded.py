@@ -185,13 +185,16 @@ def minimize_energy_bounded(
     def count(mask):
         return xp.sum(xp.astype(mask, f64))
 
+    if dev:  # 0-d constants made once (a Python scalar operand is a new array at each use)
+        zero64, one64 = (xp.asarray(v, dtype=f64, device=array_device(h)) for v in (0.0, 1.0))
+
     def masked_mean(x, mask, fallback):
         """mean of x over mask, else fallback(): a float on NumPy, off it a device scalar"""
         if not dev:
             return float(xp.mean(x[mask])) if xp.any(mask) else fallback()
         k = count(mask)
-        mean = xp.sum(xp.where(mask, x, 0.0), dtype=f64) / xp.maximum(k, 1.0)
-        return xp.where(k > 0.0, mean, fallback())
+        mean = xp.sum(xp.where(mask, x, 0.0), dtype=f64) / xp.maximum(k, one64)
+        return xp.where(k > zero64, mean, fallback())
 
     s = ks = z_old = None
     gz_old, active_old = 1.0, None
@@ -313,7 +316,7 @@ def minimize_energy_bounded(
             steps = [xp.min(xp.where(crossing, ratio, math.inf))]
         alpha = line_minimum(interaction, gap, s, kw, ks, slope0, work=work,
                              also=steps if dev else None, speculate=speculate if dev else None,
-                             speculated=guess)  # fmt: skip
+                             speculated=guess, next_point=dev)  # fmt: skip
         if not math.isfinite(alpha):
             status = SolveStatus.LINE_SEARCH_FAILED
             message = f"line search failed at iteration {it}"

@@ -59,6 +59,7 @@ def line_minimum(
     also=None,
     speculate=None,
     speculated=None,
+    next_point=False,
 ):
     """Step ``alpha`` minimising E along ``w + alpha s`` (a root of the directional slope).
 
@@ -78,7 +79,11 @@ def line_minimum(
     ``speculate(alpha, pressure) -> (state, scalars)`` (device scalars only): the
     caller's state after the first guess ``alpha``, whose scalars come over in the same
     transfer; if the guess is taken, ``speculated`` (a dict) receives ``"state"`` and
-    ``"values"`` (the scalars as floats).
+    ``"values"`` (the scalars as floats). ``next_point`` (off NumPy): the point evaluated
+    after a guess not taken (a doubling, or the first regula falsi point) is computed
+    with the guess, its slope (and ``speculate``'s state there, received as the guess's
+    if it is the step returned) in the same transfer: one host sync where the guess is
+    not taken, for a law evaluation more where it is.
     """
     also = [] if also is None else also
     c0 = vdot(s, kw) if elastic_slope is None else elastic_slope
@@ -115,27 +120,28 @@ def line_minimum(
     curv = curv + c1
     if on_device(curv):
         # a GPU: the guess and the slope there as device scalars, to the host in one
-        # transfer with the line's other scalars (one host sync for an accepted guess);
-        # the point evaluated next if it is not taken (a doubling or the first regula
-        # falsi point) and its slope (and the caller's state there) come in the same
-        # transfer: one host sync instead of two (three with the caller's next top)
+        # transfer with the line's other scalars (one host sync for an accepted guess)
         xp = work.xp
         hi, p, f_hi = _device_guess(interaction, sa, ga, c0, c1, curv, slope0, work)
         last.update(pressure=p, sites=sites)
         state, guessed = speculate(hi, p) if speculate is not None else (None, [])
-        nxt = _device_next(xp, hi, f_hi, slope0)
-        p_nxt = interaction.pressure(ga + work.scalar(nxt, ga) * sa)
-        f_nxt = c0 + nxt * c1 - vdot(sa, p_nxt)
-        state_nxt, nexts = speculate(nxt, p_nxt) if speculate is not None else (None, [])
+        nexts = []
+        if next_point:  # the next point and its slope (and state) in the same transfer
+            nxt = _device_next(xp, hi, f_hi, slope0)
+            p_nxt = interaction.pressure(ga + work.scalar(nxt, ga) * sa)
+            nexts = [nxt, c0 + nxt * c1 - vdot(sa, p_nxt)]
+            state_nxt, more = speculate(nxt, p_nxt) if speculate is not None else (None, [])
+            nexts += more
         k, m = len(also), len(guessed)
-        c0, c1, slope0, hi, f_hi, x_nxt, f_x, *rest = fetch(
-            xp, [c0, c1, slope0, hi, f_hi, nxt, f_nxt, *also, *guessed, *nexts]
-        )
+        c0, c1, slope0, hi, f_hi, *rest = fetch(xp, [c0, c1, slope0, hi, f_hi, *also, *guessed,
+                                                     *nexts])  # fmt: skip
         also[:] = rest[:k]
         if speculate is not None and abs(f_hi) <= rtol * abs(slope0):
             speculated.update(state=state, values=rest[k : k + m])
-        ahead.update(alpha=x_nxt, slope=f_x, pressure=p_nxt, sites=sites)
-        ahead.update(state=state_nxt, values=rest[k + m :])
+        if next_point:
+            x_nxt, f_x, *values = rest[k + m :]
+            ahead.update(alpha=x_nxt, slope=f_x, pressure=p_nxt, sites=sites)
+            ahead.update(state=state_nxt, values=values)
     else:
         also[:] = fetch(work.xp, also)
         hi = -slope0 / curv if curv > 0 else 1.0
