@@ -24,6 +24,7 @@ __all__ = [
     "DTYPES",
     "array_device",
     "array_namespace",
+    "constant",
     "check_device",
     "check_dtype",
     "computes_on_heights_device",
@@ -65,6 +66,31 @@ def array_namespace(*xs, **kwargs):
 #: NumPy's lazy submodules (f2py, testing, ...), ~0.15 s that ``import roughcontact``
 #: need not pay.
 _NAMESPACES: dict = {}
+
+
+def constant(value: float, like):
+    """``value`` as an operand of ``like``: the Python float on NumPy, elsewhere a cached
+    array of shape ``(1,) * like.ndim`` in ``like``'s dtype on its device (the same
+    values: a Python scalar operand takes the array's dtype; array_api_strict converts a
+    Python scalar at every use, two arrays more per operation, which this avoids)."""
+    if is_numpy_array(like):
+        return value
+    xp = array_namespace(like)
+    key = (type(like), like.dtype, array_device(like), like.ndim, float(value).hex())
+    try:
+        return _CONSTANTS[key]
+    except KeyError:
+        pass
+    except TypeError:  # an unhashable device or dtype: made anew
+        return xp.full((1,) * like.ndim, value, dtype=like.dtype, device=array_device(like))
+    if len(_CONSTANTS) > 256:  # a few per law and dtype: a bound, not a cache policy
+        _CONSTANTS.clear()
+    made = xp.full((1,) * like.ndim, value, dtype=like.dtype, device=array_device(like))
+    _CONSTANTS[key] = made
+    return made
+
+
+_CONSTANTS: dict = {}
 
 
 def is_numpy_array(x) -> bool:

@@ -18,6 +18,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+from .._backend import constant
 from .._validate import positive
 from ._base import GapLaw, as_gap
 
@@ -80,7 +81,7 @@ class Exponential(GapLaw):
     def _decay(self, gap):
         """exp(-max(g, 0)/ρ) (hard core: the gap clipped at the wall)."""
         xp, g = as_gap(gap)
-        return xp.exp(-xp.maximum(g, 0.0) / self.range)
+        return xp.exp(-xp.maximum(g, constant(0.0, g)) / constant(self.range, g))
 
     def _evaluate(self, gap):
         xp, g = as_gap(gap)

@@ -49,10 +49,20 @@ class _DeviceSteps:
     """Device steps of one bounded solve (from the closures of its solver function)."""
 
     def __init__(self, xp, top, green, stiff_single, masked_mean, in_dt, count, interaction,
-                 rigid, modulus, work):  # fmt: skip
+                 rigid, modulus, work, zero):  # fmt: skip
         self.xp, self.top, self.green, self.stiff_single = xp, top, green, stiff_single
         self.masked_mean, self.in_dt, self.count = masked_mean, in_dt, count
         self.interaction, self.rigid, self.modulus, self.work = interaction, rigid, modulus, work
+        # the step's constants, made once: (1,) in the fields' dtype (``zero``), 0-d
+        # float64 (a Python scalar operand is converted at every use)
+        dev, f64 = array_device(zero), xp.float64
+        self.zero, self.minus_one, self.inf = (
+            zero,
+            *(xp.full((1,), v, dtype=zero.dtype, device=dev) for v in (-1.0, math.inf)),
+        )
+        self.zero64, self.inf64, self.rtol = (
+            xp.asarray(v, dtype=f64, device=dev) for v in (0.0, math.inf, LINE_RTOL)
+        )
 
     def state(self, w, kw, gap, mu, active, free, rr, rr_max, n_free, s, z_old, gz_old, active_old):
         """The host loop's variables as a :class:`BoundedState` (placeholders for the
@@ -72,19 +82,20 @@ class _DeviceSteps:
     def step(self, st, restart: bool, threshold, alive):
         """One iteration, no host sync; frozen (``st`` itself) unless ``alive`` and the
         top needs no decision and the guess is taken and feasible. Returns (state, go)."""
-        xp, in_dt = self.xp, self.in_dt
+        xp, in_dt, zero = self.xp, self.in_dt, self.zero
         residual = st.rr_max / self.modulus
-        ok = alive & (residual > threshold) & (residual < math.inf) & (st.n_free > 0.0)
-        z = xp.where(st.free, self.green(st.rr), 0.0)
+        ok = alive & (residual > threshold) & (residual < self.inf64) & (st.n_free > self.zero64)
+        z = xp.where(st.free, self.green(st.rr), zero)
         if self.rigid:
-            z = xp.where(st.free, z - in_dt(self.masked_mean(z, st.free, lambda: 0.0)), 0.0)
+            z = xp.where(st.free, z - in_dt(self.masked_mean(z, st.free, lambda: 0.0)), zero)
         s, slope0, gz = _direction_on_device(xp, st.rr, z, st.z_old, st.s, st.gz_old, restart,
                                              st.active, st.active_old)  # fmt: skip
         ks = self.stiff_single(s)
-        crossing = s < 0
-        alpha_max = xp.min(xp.where(crossing, -st.gap / xp.where(crossing, s, -1.0), math.inf))
+        crossing = s < zero
+        ratio = -st.gap / xp.where(crossing, s, self.minus_one)
+        alpha_max = xp.min(xp.where(crossing, ratio, self.inf))
         hi, f_hi, _ = device_guess(self.interaction, st.gap, s, ks, slope0, self.work, kw=st.kw)
-        go = ok & (xp.abs(f_hi) <= LINE_RTOL * xp.abs(slope0)) & (hi <= alpha_max)
+        go = ok & (xp.abs(f_hi) <= self.rtol * xp.abs(slope0)) & (hi <= alpha_max)
         w, kw = st.w + in_dt(hi) * s, st.kw + in_dt(hi) * ks
         gap, mu, active, free, rr = self.top(w, kw)
         new = BoundedState(w, kw, gap, mu, active, free, rr, xp.max(xp.abs(rr)),

@@ -185,15 +185,23 @@ def minimize_energy_bounded(
     def count(mask):
         return xp.sum(xp.astype(mask, f64))
 
-    if dev:  # 0-d constants made once (a Python scalar operand is a new array at each use)
+    # off NumPy the constants of the field operations are arrays made once, of shape (1,)
+    # in the fields' dtype (a Python scalar operand is converted at every use: on
+    # array_api_strict two arrays more per operation), 0-d float64 for the device scalars;
+    # on NumPy the same Python scalars as before
+    zero, zero_i, wall_tol = 0.0, 0, on_wall_tol
+    if dev:
         zero64, one64 = (xp.asarray(v, dtype=f64, device=array_device(h)) for v in (0.0, 1.0))
+        zero, wall_tol = (xp.full((1,), v, dtype=h.dtype, device=array_device(h))
+                          for v in (0.0, on_wall_tol))  # fmt: skip
+        zero_i = zero
 
     def masked_mean(x, mask, fallback):
         """mean of x over mask, else fallback(): a float on NumPy, off it a device scalar"""
         if not dev:
             return float(xp.mean(x[mask])) if xp.any(mask) else fallback()
         k = count(mask)
-        mean = xp.sum(xp.where(mask, x, 0.0), dtype=f64) / xp.maximum(k, one64)
+        mean = xp.sum(xp.where(mask, x, zero), dtype=f64) / xp.maximum(k, one64)
         return xp.where(k > zero64, mean, fallback())
 
     s = ks = z_old = None
@@ -209,18 +217,18 @@ def minimize_energy_bounded(
         force imbalance ``rr`` of the state ``(w, K w)``."""
         gap = base + w
         r = kw - law(interaction.pressure, gap)
-        on_wall = gap <= on_wall_tol
+        on_wall = gap <= wall_tol
         if patch is not None:
             on_wall = on_wall & patch
         mu = 0.0
         if rigid:
             mean = (lambda: vtotal(r) / n) if dev else (lambda: float(xp.mean(r)))
             mu = masked_mean(r, ~on_wall, mean)
-        active = on_wall & (r - in_dt(mu) > 0)
+        active = on_wall & (r - in_dt(mu) > zero_i)
         free = ~active
         if rigid:
             mu = masked_mean(r, free, lambda: mu)
-        return gap, mu, active, free, xp.where(free, r - in_dt(mu), 0.0)
+        return gap, mu, active, free, xp.where(free, r - in_dt(mu), zero)
 
     def speculate(alpha, pressure):
         """Off NumPy: the state after the line search's first guess, whose residual and
@@ -238,7 +246,7 @@ def minimize_energy_bounded(
         blocks = Schedule()
         blocks.wait = 1  # the first step often crosses the wall (a projection): on the host
         stepper = _DeviceSteps(xp, top, green, stiff_single, masked_mean, in_dt, count,
-                               interaction, rigid, es, Workspace(base))  # fmt: skip
+                               interaction, rigid, es, Workspace(base), zero)  # fmt: skip
     while True:
         if ahead is None:
             gap, mu, active, free, rr = top(w, kw)

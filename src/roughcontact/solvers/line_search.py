@@ -15,7 +15,8 @@ def _device_guess(interaction, sa, ga, c0, c1, curv, slope0, work):
     """The Newton guess ``hi`` of :func:`line_minimum` with the curvature ``curv`` at
     alpha = 0, the interaction pressure ``p`` there and the slope ``f_hi``: device scalars."""
     xp = work.xp
-    hi = xp.where(curv > 0.0, -slope0 / xp.where(curv > 0.0, curv, 1.0), 1.0)
+    convex = curv > 0.0
+    hi = xp.where(convex, -slope0 / xp.where(convex, curv, 1.0), 1.0)
     hi = xp.minimum(xp.maximum(hi, 1e-8), 4.0)
     p = interaction.pressure(ga + work.scalar(hi, ga) * sa)
     return hi, p, c0 + hi * c1 - vdot(sa, p)
