@@ -84,7 +84,7 @@ def counting(by_line: bool = False):
     from array_api_strict._array_object import Array
 
     counts = {"syncs": 0, "copies": 0, "arrays": 0, "fields": 0}
-    lines = {"syncs": collections.Counter(), "arrays": collections.Counter()}
+    lines = {kind: collections.Counter() for kind in ("syncs", "arrays", "fields")}
     saved = {name: Array.__dict__[name] for name in (*SYNCS, *COPIES, "_new")}
 
     def wrap(name, copy=False):
@@ -109,11 +109,14 @@ def counting(by_line: bool = False):
 
     def counted_new(cls, *args, **kwargs):
         counts["arrays"] += 1
+        site = _site() if by_line else None
         if by_line:
-            lines["arrays"][_site()] += 1
+            lines["arrays"][site] += 1
         out = new(cls, *args, **kwargs)
         if out.size is None or out.size > SMALL:  # a pass over a field, not a scalar
             counts["fields"] += 1
+            if by_line:
+                lines["fields"][site] += 1
         return out
 
     Array._new = classmethod(counted_new)

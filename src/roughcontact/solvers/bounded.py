@@ -182,8 +182,16 @@ def minimize_energy_bounded(
     def in_dt(x):  # a float64 device scalar in the fields' precision (as a Python float)
         return xp.astype(x, h.dtype) if on_device(x) and x.dtype != h.dtype else x
 
+    counted = []  # the last masks counted, with their counts (each mask is counted 2-3 times)
+
     def count(mask):
-        return xp.sum(xp.astype(mask, f64))
+        """The sites of ``mask`` (a 0-d float64 device array; off NumPy only)."""
+        for seen, k in counted:
+            if seen is mask:  # the same array: the top's free sites, then the state's
+                return k
+        k = xp.sum(xp.astype(mask, f64))
+        counted[:] = [(mask, k), *counted[:1]]  # (keeps the masks alive: ids stay theirs)
+        return k
 
     # off NumPy the constants of the field operations are arrays made once, of shape (1,)
     # in the fields' dtype (a Python scalar operand is converted at every use: on
