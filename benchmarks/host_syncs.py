@@ -7,7 +7,10 @@ creates is a kernel launch and an allocation. Both are counted here without a GP
 calls of ``Array.__float__``/``__bool__``/``__int__``/``__index__``/``__complex__`` and
 conversions to NumPy (``__array__``, ``__dlpack__``: several scalars fetched at once) are
 "syncs"; those conversions of more than a few elements are also "host copies"; and every
-array created (``Array._new``) is counted.
+array created (``Array._new``) is counted, those of more than a few elements also as
+"fields" (a pass over a field: the others are scalars, among them the one or two arrays
+array_api_strict makes for each Python or 0-d scalar operand of a field operation,
+which CuPy passes to the kernel instead).
 
 "Per iteration" is the marginal count: the same solve run to ``--iterations`` and to
 twice that many iterations (``--iterations``, default 6; ``--tol`` 1e-15, which none of
@@ -23,10 +26,11 @@ outer search runs whole inner solves; its count is per inner iteration.
     python benchmarks/host_syncs.py --size 64 --json syncs.json
     python benchmarks/host_syncs.py --only smooth --by-line   # per source line
 
-``--by-line`` charges every array and sync to the innermost frame in roughcontact's
-source (``file:line``), so that the counts can be attributed to the operations of the
-method (an array made inside array_api_strict or array_api_compat is charged to the
-solver line that called it).
+``--by-line`` charges every array, field and sync to the innermost frame in
+roughcontact's source that is not a helper (``file:line``; a helper's own line follows
+"via"), so that the counts can be attributed to the operations of the method (an array
+made inside array_api_strict or array_api_compat is charged to the solver line that
+called it); ``--top`` lines are shown per solver, and ``--json`` keeps them all.
 
 Targets (issue 34): at most 2 syncs and 40 arrays per iteration for every solver.
 """

@@ -9,14 +9,16 @@ steps (init / step / terminate, :mod:`roughcontact.solvers._blocks`) a step make
 sync at all and the host checks once per block.
 
 Targets of issue 34: at most 2 syncs and 40 arrays per iteration. The syncs are met by
-every solver but load control (2.5: its count includes every inner solve's set-up, result
-record and first, projected or bracketed, steps: its inner solves here take ~8
-iterations). The
-arrays are not: every array-API operation is an array, and a step of these methods is
-60-100 operations (the hard wall's: three FFT convolutions of 5 arrays each, the law's
-evaluations in the adhesive ones); the tests below hold the counts reached so that they
-cannot grow unnoticed, and mark the unmet targets as expected failures (strict: they
-fail once met, so that the bounds here are tightened).
+every solver, load control included (its count includes every inner solve's set-up,
+result record and first, projected or bracketed, steps: its inner solves here take ~8
+iterations; they reuse the heights' statistics, and the line search brings its next
+point in the guess's transfer). The arrays are not: every array-API operation is an
+array, and a step of these methods is 57-111 passes over a field and 100-240 arrays
+with the scalars (benchmarks/README.md attributes them per source line: the FFT
+convolutions, the law's evaluations, the method's elementwise work); the tests below
+hold the counts reached so that they cannot grow unnoticed, and mark the unmet targets
+as expected failures (strict: they fail once met, so that the bounds here are
+tightened).
 """
 
 import importlib.util
