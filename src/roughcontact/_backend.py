@@ -69,11 +69,12 @@ _NAMESPACES: dict = {}
 
 
 def constant(value: float, like):
-    """``value`` as an operand of ``like``: the Python float on NumPy, elsewhere a cached
+    """``value`` as an operand of ``like``: the Python float on NumPy (and with a Python or
+    NumPy scalar ``like``), elsewhere a cached
     array of shape ``(1,) * like.ndim`` in ``like``'s dtype on its device (the same
     values: a Python scalar operand takes the array's dtype; array_api_strict converts a
     Python scalar at every use, two arrays more per operation, which this avoids)."""
-    if is_numpy_array(like):
+    if isinstance(like, (float, int, np.generic)) or is_numpy_array(like):
         return value
     xp = array_namespace(like)
     key = (type(like), like.dtype, array_device(like), like.ndim, float(value).hex())

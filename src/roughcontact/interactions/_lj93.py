@@ -7,7 +7,7 @@ interaction of a half-space of 12-6 LJ atoms with a wall (Steele 1973). Its mini
 
 from __future__ import annotations
 
-from .._backend import array_namespace
+from .._backend import array_namespace, constant
 
 __all__ = ["SIGMA_OVER_A0", "lj93_derivative", "lj93_terms", "lj93_with_core"]
 
@@ -24,20 +24,23 @@ def curvature_at_minimum(sigma: float, a0: float) -> float:
 
 def _powers(g, sigma: float):
     """1/g, (σ/g)³ and (σ/g)⁹."""
-    inv = 1.0 / g
-    s3 = sigma * inv
+    # (constant: the Python scalar on NumPy, elsewhere an array made once: see there)
+    inv = constant(1.0, g) / g
+    s3 = constant(sigma, inv) * inv
     s3 = s3 * s3 * s3  # products, not ** 3: NumPy's pow is 4x slower (solvers' hot path)
     return inv, s3, s3 * s3 * s3
 
 
 def _first(epsilon: float, inv, s3, s9):
     """V_LJ' from :func:`_powers` (pressure)."""
-    return epsilon * (-(18.0 / 15.0) * s9 + 3.0 * s3) * inv
+    c = constant
+    return c(epsilon, s3) * (c(-(18.0 / 15.0), s9) * s9 + c(3.0, s3) * s3) * inv
 
 
 def _second(epsilon: float, inv, s3, s9):
     """V_LJ'' from :func:`_powers` (pressure / length)."""
-    return epsilon * ((180.0 / 15.0) * s9 - 12.0 * s3) * (inv * inv)
+    c = constant
+    return c(epsilon, s3) * (c(180.0 / 15.0, s9) * s9 - c(12.0, s3) * s3) * (inv * inv)
 
 
 def lj93_terms(g, epsilon: float, sigma: float):
@@ -66,7 +69,7 @@ def lj93_derivative(g, epsilon: float, sigma: float, a0: float, order: int, bran
     """
     xp = array_namespace(g)
     g_min = CORE_FRACTION * a0
-    gc = xp.maximum(g, g_min)
+    gc = xp.maximum(g, constant(g_min, g))
     powers = _powers(gc, sigma)
     if order == 2:
         return _second(epsilon, *powers)

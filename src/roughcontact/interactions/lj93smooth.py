@@ -32,7 +32,7 @@ from typing import ClassVar
 
 import numpy as np
 
-from .._backend import is_cupy_array, is_numpy_array
+from .._backend import constant, is_cupy_array, is_numpy_array
 from .._validate import ParameterError, positive
 from ._base import as_gap
 from ._fused import kernel
@@ -181,11 +181,12 @@ class SmoothLJ93:
         xp, g = as_gap(gap)
         if is_cupy_array(g) and (fused := kernel("pressure")) is not None:
             return fused(g, *self._kernel_args(-12.0 * self.work_of_adhesion / self.range))
+        # (constant: the Python scalar on NumPy, elsewhere an array made once: see there)
         m = self._remaining_range(xp, g)
-        p = 1.0 - m  # x
+        p = constant(1.0, m) - m  # x
         p *= m
         p *= m
-        p *= -12.0 * self.work_of_adhesion / self.range
+        p *= constant(-12.0 * self.work_of_adhesion / self.range, p)
         return self._core(xp, g, p, 1, sign=-1.0)
 
     def curvature(self, gap):
@@ -195,9 +196,9 @@ class SmoothLJ93:
             scale = 12.0 * self.work_of_adhesion / self.range**2
             return fused(g, *self._kernel_args(scale))
         m = self._remaining_range(xp, g)
-        d2v = 3.0 * m - 2.0  # 1 - 3x
+        d2v = constant(3.0, m) * m - constant(2.0, m)  # 1 - 3x
         d2v *= m
-        d2v *= 12.0 * self.work_of_adhesion / self.range**2
+        d2v *= constant(12.0 * self.work_of_adhesion / self.range**2, d2v)
         return self._core(xp, g, d2v, 2, sign=1.0)
 
     def _kernel_args(self, scale):
@@ -214,25 +215,25 @@ class SmoothLJ93:
         Exactly 0 from the cutoff on (the sign of a0 + Δr - g is exact, where x = (g -
         a0)/Δr could round below 1 there): V, V', V'' vanish exactly beyond it.
         """
-        m = self.cutoff - g
-        m *= 1.0 / self.range
+        m = constant(self.cutoff, g) - g
+        m *= constant(1.0 / self.range, m)
         if is_numpy_array(m):
             return np.clip(m, 0.0, 1.0, out=m)
         # two plain passes: array_api_compat's clip allocates and checks on every call
         # (0.45 ms per call at 1024² on CuPy)
-        return xp.minimum(xp.maximum(m, 0.0), 1.0)
+        return xp.minimum(xp.maximum(m, constant(0.0, m)), constant(1.0, m))
 
     def _core(self, xp, g, out, derivative, sign):
         """``out`` with ``sign`` times that derivative of the core where g < a0 (``out``
         itself, overwritten there, on NumPy; a new array elsewhere)."""
-        core = g < self.equilibrium_distance
+        core = g < constant(self.equilibrium_distance, g)
         if not is_numpy_array(core):
             # on every site, selected by a mask: no test on the host (a sync on a GPU) and
             # no gather (CuPy's boolean indexing syncs too); the same values on the core
             d = lj93_derivative(
                 g, self.epsilon, self.sigma, self.equilibrium_distance, derivative, branch=False
             )
-            return xp.where(core, sign * d, out)
+            return xp.where(core, constant(sign, d) * d, out)
         if core.ndim == 1:
             core = np.flatnonzero(core)  # index arrays: cheaper gathers on a part of the band
             if core.size == 0:

@@ -87,7 +87,9 @@ class _DeviceSteps:
         ok = alive & (residual > threshold) & (residual < self.inf64) & (st.n_free > self.zero64)
         z = xp.where(st.free, self.green(st.rr), zero)
         if self.rigid:
-            z = xp.where(st.free, z - in_dt(self.masked_mean(z, st.free, lambda: 0.0)), zero)
+            # (n_free: the free sites' count, kept with them)
+            mean = self.masked_mean(z, st.free, lambda: 0.0, st.n_free)
+            z = xp.where(st.free, z - in_dt(mean), zero)
         s, slope0, gz = _direction_on_device(xp, st.rr, z, st.z_old, st.s, st.gz_old, restart,
                                              st.active, st.active_old)  # fmt: skip
         ks = self.stiff_single(s)

@@ -204,11 +204,12 @@ def minimize_energy_bounded(
                           for v in (0.0, on_wall_tol))  # fmt: skip
         zero_i = zero
 
-    def masked_mean(x, mask, fallback):
-        """mean of x over mask, else fallback(): a float on NumPy, off it a device scalar"""
+    def masked_mean(x, mask, fallback, k=None):
+        """mean of x over mask, else fallback(): a float on NumPy, off it a device scalar
+        (``k``: the mask's count if known)"""
         if not dev:
             return float(xp.mean(x[mask])) if xp.any(mask) else fallback()
-        k = count(mask)
+        k = count(mask) if k is None else k
         mean = xp.sum(xp.where(mask, x, zero), dtype=f64) / xp.maximum(k, one64)
         return xp.where(k > zero64, mean, fallback())
 

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 
+from .._backend import constant
 from ._inplace import Workspace
 from .reductions import dot, fetch, on_device, vdot
 from .roots import bracketed_root
@@ -15,9 +16,10 @@ def _device_guess(interaction, sa, ga, c0, c1, curv, slope0, work):
     """The Newton guess ``hi`` of :func:`line_minimum` with the curvature ``curv`` at
     alpha = 0, the interaction pressure ``p`` there and the slope ``f_hi``: device scalars."""
     xp = work.xp
-    convex = curv > 0.0
-    hi = xp.where(convex, -slope0 / xp.where(convex, curv, 1.0), 1.0)
-    hi = xp.minimum(xp.maximum(hi, 1e-8), 4.0)
+    zero, one = constant(0.0, curv), constant(1.0, curv)  # made once (see constant)
+    convex = curv > zero
+    hi = xp.where(convex, -slope0 / xp.where(convex, curv, one), one)
+    hi = xp.minimum(xp.maximum(hi, constant(1e-8, curv)), constant(4.0, curv))
     p = interaction.pressure(ga + work.scalar(hi, ga) * sa)
     return hi, p, c0 + hi * c1 - vdot(sa, p)
 
@@ -27,10 +29,11 @@ def _device_next(xp, hi, f_hi, slope0):
     scalar with the host's value: ``2 hi`` (bracketing, ``f_hi < 0``), else the first
     regula falsi point of ``[0, hi]`` (:func:`.roots.false_position`, as
     :func:`.roots.bracketed_root` takes it first)."""
+    zero, one, two, half = (constant(v, hi) for v in (0.0, 1.0, 2.0, 0.5))
     d = f_hi - slope0
-    x = (0.0 * f_hi - hi * slope0) / xp.where(d != 0.0, d, 1.0)
-    inside = (d != 0.0) & (x > 0.0) & (x < hi)  # hi > 0: min(0, hi) = 0
-    return xp.where(f_hi < 0.0, 2.0 * hi, xp.where(inside, x, 0.5 * (0.0 + hi)))
+    x = (zero * f_hi - hi * slope0) / xp.where(d != zero, d, one)
+    inside = (d != zero) & (x > zero) & (x < hi)  # hi > 0: min(0, hi) = 0
+    return xp.where(f_hi < zero, two * hi, xp.where(inside, x, half * (zero + hi)))
 
 
 def device_guess(interaction, gap, s, ks, slope0, work, *, kw=None, elastic_slope=None):
