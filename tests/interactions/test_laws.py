@@ -92,3 +92,18 @@ def test_dugdale_is_a_constant_stress_up_to_the_cohesive_width():
 def test_bad_parameters_are_named(make, name):
     with pytest.raises(ParameterError, match=name):
         make()
+
+
+@pytest.mark.parametrize("dtype", [np.float64, np.float32])
+def test_exponential_hot_path_terms_are_its_evaluations(dtype):
+    # pressure and curvature compute only their term (and, off NumPy, their constants
+    # once): the values of the full evaluation to the bit, on NumPy and array_api_strict
+    law = rc.Exponential(work_of_adhesion=0.01, range=0.4)
+    g = np.concatenate([np.random.default_rng(1).normal(size=500) * 2, [0.0, -0.0, np.inf]])
+    g = g.astype(dtype)
+    strict = pytest.importorskip("array_api_strict")
+    for arr in (g, strict.asarray(g)):
+        _, dv, d2v = law._evaluate(arr)
+        np.testing.assert_array_equal(np.asarray(law.pressure(arr)), np.asarray(-dv))
+        np.testing.assert_array_equal(np.asarray(law.curvature(arr)), np.asarray(d2v))
+        assert np.asarray(law.pressure(arr)).dtype == dtype

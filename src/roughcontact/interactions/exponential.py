@@ -70,13 +70,15 @@ class Exponential(GapLaw):
             return -self._evaluate(gap)[1]
         # the solvers' hot path: only this term (the values of ``-_evaluate(gap)[1]``;
         # max(max(g, 0), 0) = max(g, 0)): a third of the operations, one array pass each
-        return -((self.work_of_adhesion / self.range) * self._decay(gap))
+        e = self._decay(gap)
+        return -(constant(self.work_of_adhesion / self.range, e) * e)
 
     def curvature(self, gap):
         """V''(g) (pressure / length)."""
         if self.core_stiffness is not None:
             return self._evaluate(gap)[2]
-        return -(self.work_of_adhesion / self.range**2) * self._decay(gap)
+        e = self._decay(gap)
+        return constant(-(self.work_of_adhesion / self.range**2), e) * e
 
     def _decay(self, gap):
         """exp(-max(g, 0)/ρ) (hard core: the gap clipped at the wall)."""
