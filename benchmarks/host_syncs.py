@@ -159,6 +159,16 @@ def problems(n: int):
     ]
 
 
+def _fresh(run, *args):
+    """``run(*args)`` with no operands cached from an earlier run (``_backend.constant``'s
+    arrays: each run makes its own, so that they cancel in the marginal counts and count
+    as set-up in a whole solve)."""
+    from roughcontact import _backend
+
+    getattr(_backend, "_CONSTANTS", {}).clear()
+    return run(*args)
+
+
 def _per_line(b, a, divisor):
     """The per-line counters of ``b`` less those of ``a`` (or none), per ``divisor``."""
     out = {}
@@ -173,7 +183,7 @@ def _per_line(b, a, divisor):
 def measure_whole(run, iterations: int, by_line: bool = False) -> dict:
     """Counts per iteration of a whole solve at the default tolerance."""
     with counting(by_line) as c:
-        res = run(iterations * 40, None)
+        res = _fresh(run, iterations * 40, None)
     its = max(res.iterations, 1)
     got = {k: c[k] / its for k in KEYS} | {"iterations": res.iterations}
     if by_line:
@@ -187,9 +197,9 @@ def measure(run, iterations: int, whole: bool, tol: float = 1e-15, by_line: bool
     if whole:  # load control: whole inner solves, counted per inner iteration
         return measure_whole(run, iterations, by_line)
     with counting(by_line) as a:
-        ra = run(iterations, tol)
+        ra = _fresh(run, iterations, tol)
     with counting(by_line) as b:
-        rb = run(2 * iterations, tol)
+        rb = _fresh(run, 2 * iterations, tol)
     extra = rb.iterations - ra.iterations
     if extra <= 0:
         raise RuntimeError(f"no extra iterations ({ra.iterations} -> {rb.iterations})")

@@ -74,7 +74,9 @@ def constant(value: float, like):
     array of shape ``(1,) * like.ndim`` in ``like``'s dtype on its device (the same
     values: a Python scalar operand takes the array's dtype; array_api_strict converts a
     Python scalar at every use, two arrays more per operation, which this avoids)."""
-    if isinstance(like, (float, int, np.generic)) or is_numpy_array(like):
+    if type(like) is np.ndarray or isinstance(like, (float, int, np.generic)):
+        return value  # (the common NumPy case first: the laws call this per operation)
+    if is_numpy_array(like):
         return value
     xp = array_namespace(like)
     key = (type(like), like.dtype, array_device(like), like.ndim, float(value).hex())
