@@ -245,3 +245,14 @@ def test_constant_operands():
     g32 = xp.astype(g, xp.float32)
     assert constant(0.4, g32).dtype == xp.float32
     assert np.array_equal(np.asarray(g32 * constant(0.4, g32)), np.asarray(g32 * 0.4))
+
+
+def test_by_line_attribution_adds_up():
+    # --by-line charges every array, field and sync to a line of the package: the lines'
+    # counts add up to the totals, and the hard wall's step is charged to its own module
+    run = dict((name, run) for name, run, _ in host_syncs.problems(32))["hardwall-offset"]
+    got = host_syncs.measure(run, 3, False, by_line=True)
+    for kind in ("syncs", "arrays", "fields"):
+        assert sum(got["lines"][kind].values()) == pytest.approx(got[kind])
+    top = max(got["lines"]["arrays"], key=got["lines"]["arrays"].get)
+    assert top.startswith("solvers/_pk_dense.py:")
