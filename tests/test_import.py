@@ -16,6 +16,7 @@ def test_import_loads_no_scipy():
     assert "roughcontact.theory.persson" in loaded  # the modules that use scipy are imported
     assert [m for m in loaded if m == "scipy" or m.startswith("scipy.")] == []
     assert "array_api_compat.numpy" not in loaded
+    assert [m for m in loaded if m == "jax" or m.startswith("jax.")] == []  # only for JAX input
 
 
 def test_scipy_comes_when_a_theory_needs_it():

@@ -86,6 +86,8 @@ import math
 import time
 from dataclasses import dataclass
 
+from array_api_compat import is_jax_array  # (looks at sys.modules: imports no jax)
+
 from .._backend import (
     array_device,
     array_namespace,
@@ -217,6 +219,10 @@ def polonsky_keer(
     ContactResult
     """
     t_start = time.perf_counter()
+    if is_jax_array(heights):  # the compiled loop (jax is imported only here)
+        from ._pk_jax import check_jax_inputs
+
+        dtype = check_jax_inputs(heights, substrate, dtype, device, callback)
     h, tol = check_problem(heights, substrate, tol, offset, device, dtype)
     if (load is None) == (offset is None):
         raise ParameterError("give exactly one of load (mean pressure) or offset")
@@ -265,6 +271,11 @@ def polonsky_keer(
         max_iter=max_iter,
         callback=callback,
     )
+    if is_jax_array(h):
+        from ._pk_jax import iterate_jax
+
+        p, u, it, residual, status, message, d = iterate_jax(p, problem, substrate)
+        return result(p, u, d, it, residual, status, message)
     if is_numpy_array(h):
         p, u, it, residual, status, message = iterate_sparse(p, problem, substrate)
     else:
