@@ -25,6 +25,15 @@ CPU (NumPy, scipy.fft on all cores) for the GPU/CPU ratio; ``--cpu-path`` also t
     python benchmarks/gpu.py --device cpu --sizes 256 --path-size 256 --cpu-sizes
                                                               # dry run without a GPU
     python benchmarks/gpu.py --dtype float32 --json gpu32.json
+    python benchmarks/gpu.py --backend jax --sizes 1024 2048 4096 --path-size 0
+                                       # the hard wall's compiled loop (jax.jit), JAX's device
+
+``--backend jax`` times the hard wall only (the adhesive solvers have no compiled loop):
+the heights as a JAX array on JAX's default device (``--device cpu``: its CPU), float64
+with ``jax_enable_x64`` switched on by this script; the first solve at each size (XLA
+compilation of every grid of the nested solves, and the solve) is reported apart
+(``first_seconds``), and the same problem solved by the NumPy loop on the CPU
+(``hardwall_numpy``) when the size is in ``--cpu-sizes`` or the device is the CPU.
 
 Surface generation and the hard-wall solve that fixes the offsets are never timed; each
 timed solve follows an untimed warm-up run of the same solve, at the same size and dtype
@@ -150,6 +159,68 @@ def bench_size(n: int, args, device: str) -> dict:
     return row
 
 
+def _jax_device(device: str, dtype: str):
+    import jax
+
+    if dtype == "float64":  # this script's choice; roughcontact never flips it
+        jax.config.update("jax_enable_x64", True)
+    return jax.devices("cpu")[0] if device == "cpu" else jax.devices()[0]
+
+
+def jax_fft_pair_seconds(n: int, device, dtype: str, repeats: int = 9) -> float:
+    """Median time of one compiled rfft2 + irfft2 pair of an n x n array (JAX)."""
+    import jax
+    import jax.numpy as jnp
+
+    x = jax.device_put(jnp.asarray(np.random.default_rng(0).standard_normal((n, n)), dtype), device)
+    pair = jax.jit(lambda a: jnp.fft.irfft2(jnp.fft.rfft2(a), s=a.shape))
+    pair(x).block_until_ready()
+    times = []
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        pair(x).block_until_ready()
+        times.append(time.perf_counter() - t0)
+    return float(np.median(times))
+
+
+def bench_size_jax(n: int, args, device: str) -> dict:
+    """The hard wall on a JAX array (compiled loop) and, on the CPU, by the NumPy loop."""
+    import jax
+    import jax.numpy as jnp
+
+    dev = _jax_device(device, args.dtype)
+    h = surface(n, args.seed)
+    sub = rc.Substrate((n, n), contact_modulus=ES, pixel_size=A0)
+    hj = jax.device_put(jnp.asarray(h, dtype=args.dtype), dev)
+    row = {"n": n, "device": f"jax:{dev.platform}", "dtype": args.dtype, "adhesive": None}
+    row["fft_seconds"] = jax_fft_pair_seconds(n, dev, args.dtype)
+
+    def one(heights):  # the result's scalars reach the host: the solve has finished
+        t0 = time.perf_counter()
+        res = rc.solve(heights, sub, rc.HardWall(), load=args.load)
+        return time.perf_counter() - t0, res
+
+    first, _ = one(hj)  # compiles every grid of the nested solves
+    timed = [one(hj) for _ in range(args.repeats)]
+    jobs = [("hardwall", timed)]
+    if device == "cpu" or n in (args.cpu_sizes or []):
+        h_np = h.astype(args.dtype)
+        one(h_np)  # warm-up (FFT plans)
+        jobs.append(("hardwall_numpy", [one(h_np) for _ in range(args.cpu_repeats)]))
+    for name, runs in jobs:
+        res = runs[0][1]
+        seconds = float(np.median([t for t, _ in runs]))
+        row[name] = {
+            "seconds": seconds, "iterations": res.iterations, "converged": res.converged,
+            "repulsive_area": res.repulsive_area, "peak_bytes": None, "peak_arrays": None,
+            "ms_per_iteration": 1e3 * seconds / max(res.iterations, 1),
+            "iteration_over_fft": seconds / max(res.iterations, 1) / row["fft_seconds"],
+            "all_seconds": [t for t, _ in runs],
+        }  # fmt: skip
+    row["hardwall"]["first_seconds"] = first
+    return row
+
+
 def bench_path(n: int, args, device: str) -> dict:
     h = surface(n, args.seed)
     sub = rc.Substrate((n, n), contact_modulus=ES, pixel_size=A0)
@@ -178,14 +249,17 @@ def bench_path(n: int, args, device: str) -> dict:
 
 def fmt(row: dict) -> list[str]:
     out = []
-    for name in ("hardwall", "adhesive"):
-        r = row[name]
+    for name in ("hardwall", "hardwall_numpy", "adhesive"):
+        r = row.get(name)
+        if r is None:
+            continue
         peak = f"{r['peak_arrays']:.1f}" if r["peak_arrays"] else "-"
         out.append(
             f"{row['device']:>5} {row['dtype']:>7} {row['n']:>6}² {name:>9} "
             f"{r['seconds']:9.3f} s {r['iterations']:>6} it {r['ms_per_iteration']:9.3f} ms/it "
             f"fft {1e3 * row['fft_seconds']:8.3f} ms  it/fft {r['iteration_over_fft']:5.2f}  "
             f"peak {peak} arrays  conv={r['converged']}"
+            + (f"  first {r['first_seconds']:.2f} s" if "first_seconds" in r else "")
         )
     return out
 
@@ -194,6 +268,12 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--sizes", type=int, nargs="*", default=[1024, 2048, 4096, 8192])
     ap.add_argument("--device", default="cuda")
+    ap.add_argument(
+        "--backend",
+        choices=["roughcontact", "jax"],
+        default="roughcontact",
+        help="jax: the hard wall's compiled loop on JAX arrays (see the module docstring)",
+    )
     ap.add_argument("--dtype", choices=["float64", "float32"], default="float64")
     ap.add_argument("--cpu-sizes", type=int, nargs="*", default=[1024, 2048])
     ap.add_argument("--path-size", type=int, default=4096, help="0 skips the path")
@@ -224,7 +304,11 @@ def main(argv=None) -> int:
 
 def _main(args, threads: dict):
     meta = machine_meta()
-    if args.device != "cpu":
+    if args.backend == "jax":
+        import jax
+
+        meta["jax"] = jax.__version__
+    elif args.device != "cpu":
         cupy = _xp(args.device)
         props = cupy.cuda.runtime.getDeviceProperties(0)
         meta |= {"gpu": props["name"].decode(), "cupy": cupy.__version__}
@@ -233,8 +317,11 @@ def _main(args, threads: dict):
     print(_threads.describe(threads), flush=True)
     rows, paths = [], []
     for n in args.sizes:
-        rows.append(bench_size(n, args, args.device))
+        bench = bench_size_jax if args.backend == "jax" else bench_size
+        rows.append(bench(n, args, args.device))
         print("\n".join(fmt(rows[-1])), flush=True)
+    if args.backend == "jax":  # the NumPy loop ran beside each size; no path (adhesive)
+        return meta, rows, paths
     for n in args.cpu_sizes or []:
         rows.append(bench_size(n, args, "cpu"))
         print("\n".join(fmt(rows[-1])), flush=True)

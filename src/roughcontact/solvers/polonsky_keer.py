@@ -78,6 +78,11 @@ selections, the projection and the correction's convolution are unconditional) a
 host reads a few scalars once per block of up to 8 steps; a step whose state needs a host
 decision (an exact refresh, convergence, a lost contact set) leaves it unchanged, so both
 loops take the same steps and report the same iterations (tested).
+
+A third, for heights given as a JAX array: the whole loop as one compiled program
+(:mod:`._pk_jax`, ``jax.jit`` and ``lax.while_loop``; periodic substrates, no callback,
+float64 only with ``jax_enable_x64``), which tests convergence on the device and returns
+to the host only once it stops. jax is imported only when such heights arrive.
 """
 
 from __future__ import annotations
@@ -185,7 +190,9 @@ def polonsky_keer(
     Parameters
     ----------
     heights : (nx, ny) array
-        Rigid surface heights ``h`` (length; summits point at the substrate).
+        Rigid surface heights ``h`` (length; summits point at the substrate). A JAX array
+        runs the compiled loop (see the module docstring); its default precision is the
+        array's own (float32 unless ``jax_enable_x64`` is on).
     substrate : Substrate (or any :class:`~roughcontact.elastic.operator.ElasticOperator`)
     load : float, optional
         Mean pressure :math:`N/A_0 \\ge 0` (pressure units). Exactly one of load/offset.
