@@ -12,11 +12,13 @@ from __future__ import annotations
 import contextlib
 import functools
 import os
+import sys
+import warnings
 
 import array_api_compat
 import numpy as np
 from array_api_compat import device as array_device
-from array_api_compat import is_array_api_obj, is_cupy_array
+from array_api_compat import is_array_api_obj, is_cupy_array, is_jax_array
 
 from .errors import ParameterError
 
@@ -375,7 +377,19 @@ def _device_context(heights, device):
         return cupy.cuda.Device(index)
     if device is None and is_cupy_array(heights):
         return heights.device
+    if is_jax_array(heights) and not sys.modules["jax"].config.jax_enable_x64:
+        return _jax_without_x64()
     return contextlib.nullcontext()
+
+
+@contextlib.contextmanager
+def _jax_without_x64():
+    """JAX without ``jax_enable_x64`` has no float64: the core's float64 accumulations of
+    reductions are float32 there (as the solve's precision is, which the docs state), and
+    JAX's warning at each of them would only repeat that."""
+    with warnings.catch_warnings():
+        warnings.filterwarnings("ignore", "Explicitly requested dtype float64", UserWarning)
+        yield
 
 
 def computes_on_heights_device(solver):

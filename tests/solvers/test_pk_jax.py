@@ -124,6 +124,7 @@ def test_bad_input_is_a_one_line_error(x64):
         rc.solve(jnp.asarray(h), sub, load=0.01, callback=lambda it, r: False)
 
 
+@pytest.mark.filterwarnings("error::UserWarning")  # no warning per float64 reduction
 def test_float64_needs_x64_and_float32_works(x32):
     h, sub = rough()
     with pytest.raises(rc.ParameterError, match="jax_enable_x64"):
@@ -134,3 +135,19 @@ def test_float64_needs_x64_and_float32_works(x32):
     ref = rc.solve(h, sub, load=0.01)
     assert np.abs(np.asarray(res.pressure) - ref.pressure).max() <= 1e-4 * ref.pressure.max()
     assert abs(res.repulsive_area - ref.repulsive_area) * h.size <= 3
+
+
+def test_lost_contact_set_restarts_as_the_numpy_loop(x64):
+    # most of the surface in contact: the first preconditioned steps lose the whole
+    # contact set, the loop restarts from the overlap with plain steps and returns to
+    # preconditioned ones later (on the device: a lax.cond, no host decision)
+    h = rc.self_affine((128, 128), hurst=0.8, rms_slope=0.1, short_cutoff=8, seed=2)
+    sub = rc.Substrate((128, 128))
+    offset = float(h.mean()) + 0.01 * float(h.std())
+    ref = rc.solve(h, sub, offset=offset, tol=1e-9)
+    res = rc.solve(jnp.asarray(h), sub, offset=offset, tol=1e-9)
+    assert ref.converged and res.converged, res.message
+    assert res.iterations < 80 and abs(res.iterations - ref.iterations) <= 3
+    assert res.repulsive_area > 0.8
+    np.testing.assert_allclose(np.asarray(res.pressure), ref.pressure,
+                               atol=1e-7 * ref.pressure.max())  # fmt: skip
