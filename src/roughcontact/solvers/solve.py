@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import math
 
+from array_api_compat import is_jax_array  # (looks at sys.modules: imports no jax)
+
 from .._backend import computes_on_heights_device
 from .._validate import MAX_ITER, ParameterError, tolerance
 from ..interactions.hardwall import HardWall
@@ -92,6 +94,11 @@ def solve(
             callback=callback,
             device=device,
             dtype=dtype,
+        )
+    if is_jax_array(heights):
+        raise ParameterError(
+            "JAX heights are solved for the hard wall only (its compiled loop); pass NumPy or "
+            f"CuPy heights for {type(interaction).__name__}"
         )
     if (load is None) == (offset is None):
         raise ParameterError("give exactly one of load (mean pressure) or offset")
