@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Issue 34's GPU check in one script: the GPU tests, benchmarks/gpu.py at 1024²-4096²
-# (float64 and float32, ms per iteration and cuFFT pairs, GPU/CPU at 2048²), the 4096²
+# (float64 and float32, ms per iteration and cuFFT pairs, GPU/CPU at 2048²; the hard
+# wall's jax.jit loop beside them), the 4096²
 # paper task with its analysis, a 512² task on the GPU against one CPU core, the 41-state
 # 4096² path and the task through the real Dask path. Each step has its own time limit,
 # so a slow one does not take the rest with it; everything goes to $LOG.
@@ -41,12 +42,16 @@ step() {  # step SECONDS TITLE COMMAND...: run with a limit, log the time it too
     $PY -c "import sys, numpy, scipy, array_api_compat, roughcontact; print(sys.version.split()[0], 'numpy', numpy.__version__, 'scipy', scipy.__version__, 'array_api_compat', array_api_compat.__version__, roughcontact.__file__)"
     [ "$DEVICE" != cpu ] && $PY -c "import cupy; print('cupy', cupy.__version__)"
     step 90 "GPU tests" $PY -m pytest -q -p no:cacheprovider \
-        tests/backends/test_cupy.py tests/backends/test_device_detection.py
+        tests/backends/test_cupy.py tests/backends/test_device_detection.py tests/solvers/test_pk_jax.py
     cpu=(--cpu-sizes)
     [ -n "$CPU_SIZE" ] && [ "$PART" = all ] && cpu=(--cpu-sizes "$CPU_SIZE" --cpu-repeats 1)
     # shellcheck disable=SC2086
     step 150 "gpu.py float64" $PY benchmarks/gpu.py --device "$DEVICE" --sizes $SIZES \
         "${cpu[@]}" --path-size 0 --repeats 3 --json "$OUTDIR/gpu64.json"
+    # shellcheck disable=SC2086
+    step 120 "gpu.py jax (hard wall, compiled loop)" $PY benchmarks/gpu.py --backend jax \
+        --device "$DEVICE" --sizes $SIZES --cpu-sizes --path-size 0 --repeats 3 \
+        --json "$OUTDIR/gpu_jax.json"
     [ "$PART" = quick ] && exit 0
     if [ "$PART" = second ]; then  # a later, shorter run: the GPU side only
         step 100 "paper task ${TASK_SIZE}² on $DEVICE" $PY benchmarks/gpu_task.py \
