@@ -110,6 +110,9 @@ def test_iteration_cap_gives_unconverged(x64):
     assert not res.converged
     assert res.status is rc.SolveStatus.ITERATION_LIMIT
     assert res.iterations == 3 and res.residual > 1e-8
+    # a stop other than convergence still returns G p exactly (not the step's increments)
+    exact = sub.deflection(np.asarray(res.pressure))
+    np.testing.assert_allclose(np.asarray(res.deflection), exact, rtol=0, atol=1e-14)
 
 
 def test_bad_input_is_a_one_line_error(x64):
