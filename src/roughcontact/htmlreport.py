@@ -241,7 +241,7 @@ padding-bottom:.2rem}
 th,td{border:1px solid var(--line);padding:.25rem .5rem;text-align:left;vertical-align:top}
 thead th{background:var(--head)}
 figure{margin:1rem 0;break-inside:avoid;page-break-inside:avoid}
-figure img{display:block;max-width:100%;height:auto}
+figure img{display:block;max-width:min(100%,46rem);height:auto}
 figcaption{color:var(--mute);font-size:.85rem;margin-top:.3rem;max-width:48rem}
 .callout{border-left:.5rem solid var(--open);background:#f7f7f5;padding:.6rem 1rem;
 margin:1rem 0;break-inside:avoid}
@@ -259,7 +259,8 @@ h2,h3{break-after:avoid;page-break-after:avoid}
 table{font-size:8pt}
 tr,figure,.callout{break-inside:avoid;page-break-inside:avoid}
 .table{overflow:visible}
-figure img{max-height:20cm;width:auto;max-width:100%}
+figure img{max-height:10.5cm;width:auto;max-width:100%}
+footer{break-inside:avoid;page-break-inside:avoid}
 pre{white-space:pre-wrap}
 }
 """

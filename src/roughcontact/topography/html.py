@@ -76,10 +76,11 @@ def _verdict(result, d) -> Callout:
         )
     if d.get("no_extrapolation") and not why:
         why.append(f"nothing extrapolated: {d['no_extrapolation']}")
+    rows += [("why no verdict" if d["sticky"] is None else "scope note", w) for w in why]
     if d.get("continuum_reason"):
-        why.append(f"Eq. 10 leaves its validity below {length_text(d['continuum_limit'])}, "
-                   f"where the extrapolation reaches {d['continuum_reason']}")  # fmt: skip
-    rows += [("why" if d["sticky"] is None else "grounds", w) for w in why]
+        rows.append(("validity", f"Eq. 10 leaves its validity below "
+                     f"{length_text(d['continuum_limit'])}, where the extrapolation reaches "
+                     f"{d['continuum_reason']}"))  # fmt: skip
     return Callout(f"Verdict: {d['verdict']}", _tone(d["sticky"]), tuple(rows))
 
 
