@@ -5,10 +5,11 @@ the blocks of :mod:`roughcontact.htmlreport`, in the order a reader needs them: 
 verdict with its scope and margin (and, in plain words, why there is none), the inputs,
 the scan map, the PSD, the scale-dependent slope and margin, the field's criteria, every
 note, the simulation (with ``--simulate``). Every value comes from the record's JSON
-(:meth:`StickResult.to_dict`, the same dict ``--json`` prints and ``result.json`` holds)
-or from the text output's own functions on the record (:func:`.report.summary`'s pieces),
-so text, JSON and HTML say the same thing; the figures are :mod:`.report`'s, inline.
-:func:`write_html` renders the page (:func:`roughcontact.htmlreport.render_html`).
+(``StickResult.to_dict()``, the same dict ``--json`` prints and ``result.json`` holds)
+or from the text output's own functions on the record (the pieces of
+``roughcontact.topography.report.summary``), so text, JSON and HTML say the same thing;
+the figures are those of ``roughcontact.topography.report``, inline. :func:`stick_html`
+renders the page (:func:`roughcontact.htmlreport.render_html`).
 """
 
 from __future__ import annotations
@@ -225,9 +226,9 @@ def _simulation(result, d, dpi, contact_map=None) -> list:
 def stick_blocks(result, *, dpi: int = 150, figures=None) -> list:
     """The page of ``result`` (a StickResult) as :mod:`roughcontact.htmlreport` blocks.
 
-    ``figures``: the figures of :data:`.report.FIGURES` (and ``contact_map``) already
-    made, by name (the scan's with :data:`SCAN_PERCENTILES`); the others are made here.
-    Every figure is inline as a PNG at ``dpi``.
+    ``figures``: the figures of ``roughcontact.topography.report.FIGURES`` (and
+    ``contact_map``) already made, by name (the scan's with :data:`SCAN_PERCENTILES`);
+    the others are made here. Every figure is inline as a PNG at ``dpi``.
     """
     from . import report as _r
 
