@@ -77,7 +77,7 @@ def _verdict(result, d) -> Callout:
         )
     if d.get("no_extrapolation") and not why:
         why.append(f"nothing extrapolated: {d['no_extrapolation']}")
-    rows += [("why no verdict" if d["sticky"] is None else "scope note", w) for w in why]
+    rows += [("why no verdict" if d["sticky"] is None else "why this scope", w) for w in why]
     if d.get("continuum_reason"):
         rows.append(("validity", f"Eq. 10 leaves its validity below "
                      f"{length_text(d['continuum_limit'])}, where the extrapolation reaches "
@@ -259,10 +259,12 @@ def stick_blocks(result, *, dpi: int = 150, figures=None) -> list:
         _inputs(d),
         Heading("The scan"),
         png("scan", _r.figure_scan, percentiles=SCAN_PERCENTILES,
-            alt="Height map of the detrended scan", caption=f"The scan after detrending "
-            f"({d['scan']['detrend']}); the colour scale spans the heights' percentiles "
-            f"{lo:g} to {hi:g} (robust to spikes: heights beyond are drawn in its end "
-            "colours)."),  # fmt: skip
+            alt="Height map of the detrended scan" if d["scan"]["dim"] == 2 else
+            "Height profile of the detrended line scan",
+            caption=f"The scan after detrending ({d['scan']['detrend']})"
+            + (f"; the colour scale spans the heights' percentiles {lo:g} to {hi:g} (robust "
+               "to spikes: heights beyond are drawn in its end colours)."
+               if d["scan"]["dim"] == 2 else ": the whole profile.")),  # fmt: skip
         Heading("Power spectral density"),
         png("psd", _r.figure_psd, alt="Power spectral density against wavevector, "
             "log-log, with the self-affine fit and its extrapolation",
