@@ -6,17 +6,14 @@ record, and the page's bytes (every reference inline, every text escaped).
 """
 
 import html
-import json
 import re
 
 import numpy as np
 import pytest
 from _browser import external_references
-from click.testing import CliRunner
 
 import roughcontact as rc
 from roughcontact import htmlreport
-from roughcontact.cli.main import main
 from roughcontact.topography.html import stick_html
 from roughcontact.topography.report import summary
 
@@ -110,24 +107,3 @@ def test_a_measured_scale_answer_is_shown_where_the_record_has_one(result, monke
     monkeypatch.setattr(type(result), "to_dict", lambda self, **k: d)
     text = _text(stick_html(result))
     assert "at the measured scale sticky" in text
-
-
-def test_study_report_html_beside_readme(tmp_path, make_study):
-    from roughcontact.studies import load_study, run_study
-
-    study = tmp_path / "out"
-    run_study(load_study(make_study()), study, scheduler="synchronous", progress=False)
-    report = tmp_path / "report"
-    r = CliRunner().invoke(main, ["study", "report", str(study), "-o", str(report)])
-    assert r.exit_code == 0, r.output
-    page = (report / "report.html").read_text()
-    claims = json.loads((report / "claims.json").read_text())
-    text = _text(page)
-    readme = (report / "README.md").read_text()
-    for heading in re.findall(r"^## (.+)$", readme, flags=re.M):  # the same sections
-        assert _text(html.escape(heading)) in text, heading
-    crit = claims["eq10_criterion"]["measured_kappa_rep"]
-    assert f"With the measured κ_rep: {crit['agree']} of {crit['decided']} decided" in text
-    assert len(re.findall(r'<img src="data:image/png;base64,', page)) == 3
-    assert external_references(page) == []
-    assert "report.html" in r.output

@@ -165,6 +165,8 @@ def command_line() -> str:
     from pathlib import Path
 
     name = Path(sys.argv[0]).name if sys.argv else ""
+    if name == "__main__.py":
+        return shlex.join(["python", "-m", "roughcontact", *sys.argv[1:]])
     prog = "roughcontact" if name.startswith("roughcontact") or not name else name
     return shlex.join([prog, *sys.argv[1:]])
 
