@@ -1,6 +1,7 @@
 """The command line: JSON contracts, exit codes, readable errors."""
 
 import json
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -227,6 +228,10 @@ def test_demo_small_json(tmp_path, monkeypatch):
     assert "κ_att" in report and "fig2" in report
     assert "## Hard-wall load path" in report and "κ_rep of this hard wall" in report
     assert (tmp_path / "demo" / "demo.nc").exists()
+    # the study's own report, one page: `demo` points to it
+    page = Path(study["report_html"])
+    assert page == tmp_path / "demo" / "study-report" / "report.html"
+    assert page.read_text().startswith("<!DOCTYPE html>") and "Eq. 10" in page.read_text()
     _assert_figure1_shows_the_maps(calls, study, tmp_path / "demo")
     # a second run resumes: nothing is recomputed
     r = CliRunner().invoke(main, [*args, "-o", str(tmp_path / "demo")])

@@ -21,7 +21,8 @@ from roughcontact.criterion import stickiness_criterion
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "topographies"
 MATERIAL = ["--modulus", "10MPa", "--work-of-adhesion", "50mJ/m^2"]
-REPORT = {"result.json", "summary.txt", "scan.png", "psd.png", "slope.png", "margin.png"}
+REPORT = {"result.json", "summary.txt", "scan.png", "psd.png", "slope.png", "margin.png",
+          "report.html"}  # fmt: skip
 
 
 @pytest.fixture(scope="module")
@@ -92,8 +93,9 @@ def test_report_directory(scan, tmp_path):
     d = json.loads((out / "result.json").read_text())
     assert d["sticky"] in (True, False, None) and "units" in d
     assert (out / "summary.txt").read_text().splitlines()[0] == r.output.splitlines()[0]
-    for name in REPORT - {"result.json", "summary.txt"}:
+    for name in REPORT - {"result.json", "summary.txt", "report.html"}:
         assert (out / name).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert (out / "report.html").read_text().startswith("<!DOCTYPE html>")
 
 
 def test_bad_input_one_line_exit_2(scan, tmp_path):

@@ -1,10 +1,13 @@
 """``roughcontact study report``: data, claims, figures and the report of a study."""
 
+import html
 import json
+import re
 
 import pandas as pd
 import pytest
 import xarray as xr
+from _browser import external_references
 from click.testing import CliRunner
 
 from roughcontact.cli.main import main
@@ -34,6 +37,15 @@ def test_report_from_a_study_and_from_its_collected_data(tmp_path, make_study):
     assert tasks["kappa"].to_numpy() == pytest.approx(ds["kappa"].values, nan_ok=True)
     for name in ("fig2_area_load", "fig3_collapse", "fig4_theory"):
         assert (report / "figures" / f"{name}.png").stat().st_size > 1000
+    # report.html beside README.md: the same sections, the claims' numbers, Figs. 2-4 inline
+    page = (report / "report.html").read_text()
+    words = " ".join(html.unescape(re.sub(r"<[^>]+>", " ", page)).split())
+    for heading in re.findall(r"^## (.+)$", text, flags=re.M):
+        assert " ".join(heading.replace("`", "").split()) in words, heading
+    crit = claims["eq10_criterion"]["measured_kappa_rep"]
+    assert f"With the measured κ_rep: {crit['agree']} of {crit['decided']} decided" in words
+    assert len(re.findall(r'<img src="data:image/png;base64,', page)) == 3
+    assert external_references(page) == [] and "report.html" in r.output
     # the committed data alone regenerate the same numbers
     again = tmp_path / "again"
     r = CliRunner().invoke(

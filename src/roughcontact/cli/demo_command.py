@@ -22,7 +22,8 @@ from ._common import _fail, _option, _output_option
 @_option("--study-size", default=256, help="Grid size of the adhesive study (0: skip the study).")
 @_option("--seeds", default=5, help="Study realisations.")
 @_output_option(
-    "Directory for the study's results, figures and report.md (resumed if present).",
+    "Directory for the study's results, figures, report.md and study-report/report.html "
+    "(resumed if present).",
     default="roughcontact-demo",
 )
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
@@ -85,5 +86,6 @@ def demo(size, seed, study_size, seeds, output, as_json):
         for line in study["summary"]:
             click.echo(f"* {line}")
         click.echo(f"report: {study['report']}  figures: {Path(study['report']).parent}/figures")
+        click.echo(f"the study's report, one page to open or share: {study['report_html']}")
         if study["failed"]:
             _fail(f"{study['failed']} study tasks failed (see {output}/tasks)", 1)

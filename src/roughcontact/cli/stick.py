@@ -118,7 +118,8 @@ def _pixel_size(text):
     "out_dir",
     type=click.Path(file_okay=False),
     default=None,
-    help="Report directory: result.json, summary.txt and figures (created).",
+    help="Report directory: report.html (one self-contained page), result.json, "
+    "summary.txt and figures (created).",
 )
 @click.option(
     "--format",
@@ -217,7 +218,9 @@ def stick(scan, channel, modulus, work, poisson, counter_modulus, counter_poisso
         counter_poisson=counter_poisson,
     )
     if out_dir is not None:
-        write_report(result, out_dir, formats=formats, dpi=dpi)
+        from ..htmlreport import command_line
+
+        write_report(result, out_dir, formats=formats, dpi=dpi, command=command_line())
     if as_json:
         click.echo(json.dumps(result.to_dict(), allow_nan=False))
         return

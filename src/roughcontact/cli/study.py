@@ -134,7 +134,8 @@ def collect(out_dir, output, no_timings):
 @study.command("report")
 @click.argument("source", metavar="DIR|COLLECTED.nc", type=click.Path(exists=True))
 @_output_option(
-    "Report directory: README.md, claims.json, versions.json, data/, figures/.", "out_dir"
+    "Report directory: README.md, report.html, claims.json, versions.json, data/, figures/.",
+    "out_dir",
 )
 @_option("--confidence", default=0.95, help="Level of the intervals over seeds, in (0, 1).")
 @_option("--dpi", default=120, help="Figure resolution.")
@@ -157,10 +158,12 @@ def report(source, out_dir, confidence, dpi):
         )
     DPI.check("dpi", dpi)
     check_directory_writable(out_dir, "-o/--output")  # before reading the study
-    result = write_report(source, out_dir, confidence=confidence, dpi=dpi)
+    from ..htmlreport import command_line
+
+    result = write_report(source, out_dir, confidence=confidence, dpi=dpi, command=command_line())
     c = result["claims"]
     crit = c["eq10_criterion"]["measured_kappa_rep"]
     click.echo(
         f"{c['eq3_linearity']['tasks']} analysed tasks; Eq. 10 agrees in {crit['agree']} of "
-        f"{crit['decided']} decided parameter sets -> {out_dir}/README.md"
+        f"{crit['decided']} decided parameter sets -> {out_dir}/README.md, {out_dir}/report.html"
     )

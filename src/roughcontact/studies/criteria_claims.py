@@ -345,76 +345,98 @@ def _n(x, digits=3) -> str:
 
 
 def report_lines(c) -> list[str]:
-    """Markdown of :func:`stickiness_criteria` and :func:`adhesion_hysteresis` (``c``: the
-    claims of :func:`roughcontact.studies.claims.all_claims`)."""
-    L = []
+    """Markdown of :func:`report_blocks`."""
+    from ..htmlreport import markdown_lines
+
+    return markdown_lines(report_blocks(c))
+
+
+def report_blocks(c) -> list:
+    """Sections 9 and 10 of the report (:mod:`roughcontact.htmlreport` blocks) from
+    :func:`stickiness_criteria` and :func:`adhesion_hysteresis` (``c``: the claims of
+    :func:`roughcontact.studies.claims.all_claims`)."""
+    from ..htmlreport import Bullets, Heading, Para, Table
+
+    B = []
     sc = c.get("stickiness_criteria")
     if sc:
-        L += [
-            "## 9. Which criterion predicts the onset of stickiness in the paper's own model?",
-            "",
-            "*Not in the paper.* Every criterion of `roughcontact.stickiness`, evaluated a priori "
-            "on each parameter set (inputs from the self-affine spectrum in closed form: H, "
-            "h′rms, λs, L, the roll-off, E*, w, Δr; Eq. 10 with d_rep = 4h′rms/h″rms and "
-            f"κ_rep = 2), against the measured verdict ({sc['parameter_sets']} parameter sets; "
-            "rows measured, columns predicted; a criterion without a verdict counts as "
-            "undecided). *Best threshold*: the threshold on the same parameter that agrees "
-            "with the most decided sets — whether the criterion's form orders the sets right, "
-            "whatever its constant.",
-            "",
-            "| criterion | parameter | threshold | sticky→sticky | sticky→not | not→sticky | "
-            "not→not | undecided→sticky/not | agree (decided) | best threshold (agree) |",
-            "|---|---|---|---|---|---|---|---|---|---|",
-        ]
+        rows = []
         for b in sc["criteria"].values():
             t = b["table"]
             bt = b["best_threshold"]
             sign = "<" if b["sticky_below"] else ">"
             agree = f"{b['agree']} of {b['decided']}" if b["decided"] else "no verdict"
-            L.append(
-                f"| {b['name']} | {b['parameter_symbol']} | {sign} {_n(b['threshold'])} | "
-                f"{t[STICKY][STICKY]} | {t[STICKY][NOT_STICKY]} | {t[NOT_STICKY][STICKY]} | "
-                f"{t[NOT_STICKY][NOT_STICKY]} | {t[UNDECIDED][STICKY]}/{t[UNDECIDED][NOT_STICKY]}"
-                f" | {agree} | {sign} {_n(bt['threshold'])} ({bt['agree']} of {bt['decided']}) |"
-            )
-        L += [
-            "",
-            "Dahlquist's rule needs SI (no scale in lattice units) and Müser's parameter "
-            "(its definition unverified against Müser's paper) classifies the regime without "
-            "a stickiness threshold: neither gives a verdict here. The Fuller–Tabor threshold "
-            "θ = 10 is a convention. No bearing-area criterion (Ciavarella's BAM, Violano et "
-            "al.) is evaluated: its equations could not be checked against the papers (see "
-            "the docs).",
-            "",
-            "Where each criterion had been validated before this table:",
-            "",
-            *[f"- {b['name']}: {b['validated']}." for b in sc["criteria"].values()],
-            "",
+            rows.append((
+                b["name"], b["parameter_symbol"], f"{sign} {_n(b['threshold'])}",
+                str(t[STICKY][STICKY]), str(t[STICKY][NOT_STICKY]), str(t[NOT_STICKY][STICKY]),
+                str(t[NOT_STICKY][NOT_STICKY]),
+                f"{t[UNDECIDED][STICKY]}/{t[UNDECIDED][NOT_STICKY]}",
+                agree, f"{sign} {_n(bt['threshold'])} ({bt['agree']} of {bt['decided']})",
+            ))  # fmt: skip
+        B += [
+            Heading(
+                "9. Which criterion predicts the onset of stickiness in the paper's own model?"
+            ),
+            Para(
+                "*Not in the paper.* Every criterion of `roughcontact.stickiness`, evaluated a "
+                "priori on each parameter set (inputs from the self-affine spectrum in closed "
+                "form: H, h′rms, λs, L, the roll-off, E*, w, Δr; Eq. 10 with d_rep = "
+                f"4h′rms/h″rms and κ_rep = 2), against the measured verdict "
+                f"({sc['parameter_sets']} parameter sets; rows measured, columns predicted; a "
+                "criterion without a verdict counts as undecided). *Best threshold*: the "
+                "threshold on the same parameter that agrees with the most decided sets — "
+                "whether the criterion's form orders the sets right, whatever its constant."
+            ),
+            Table(
+                (
+                    "criterion",
+                    "parameter",
+                    "threshold",
+                    "sticky→sticky",
+                    "sticky→not",
+                    "not→sticky",
+                    "not→not",
+                    "undecided→sticky/not",
+                    "agree (decided)",
+                    "best threshold (agree)",
+                ),
+                tuple(rows),
+            ),  # fmt: skip
+            Para(
+                "Dahlquist's rule needs SI (no scale in lattice units) and Müser's parameter "
+                "(its definition unverified against Müser's paper) classifies the regime "
+                "without a stickiness threshold: neither gives a verdict here. The Fuller–Tabor "
+                "threshold θ = 10 is a convention. No bearing-area criterion (Ciavarella's BAM, "
+                "Violano et al.) is evaluated: its equations could not be checked against the "
+                "papers (see the docs)."
+            ),
+            Para("Where each criterion had been validated before this table:"),
+            Bullets(tuple(f"{b['name']}: {b['validated']}." for b in sc["criteria"].values())),
         ]
     hy = c.get("adhesion_hysteresis")
     if hy and hy.get("by_adhesion_length"):
-        L += [
-            "## 10. Adhesion hysteresis: energy dissipated per approach–retraction cycle",
-            "",
-            "*Not in the paper.* W = −∮N dd per A0 (units of E* a0) over each task's collected "
-            "steps; the bound sums |ΔN||Δd|/2 over the steps flagged as jumps (the steps do not "
-            f"resolve where a jump happens). {hy['tasks']} tasks; median [16th, 84th "
-            "percentile] over tasks:",
-            "",
-            "| ℓa/a0 | W/(E* a0) | bound | jumps | W per jump | cycles not closed |",
-            "|---|---|---|---|---|---|",
-        ]
+        rows = []
         for r in hy["by_adhesion_length"]:
             cols = [
                 f"{_n(r[k]['median'])} [{_n(r[k]['p16'])}, {_n(r[k]['p84'])}]"
                 for k in ("dissipated_energy", "energy_uncertainty", "jumps", "energy_per_jump")
             ]
-            L.append(
-                f"| {_n(r['adhesion_length'])} | " + " | ".join(cols) + f" | {r['not_closed']} |"
-            )
-        L.append("")
-        L += _set_lines(hy)
-    return L
+            rows.append((_n(r["adhesion_length"]), *cols, str(r["not_closed"])))
+        B += [
+            Heading("10. Adhesion hysteresis: energy dissipated per approach–retraction cycle"),
+            Para(
+                "*Not in the paper.* W = −∮N dd per A0 (units of E* a0) over each task's "
+                "collected steps; the bound sums |ΔN||Δd|/2 over the steps flagged as jumps (the "
+                f"steps do not resolve where a jump happens). {hy['tasks']} tasks; median "
+                "[16th, 84th percentile] over tasks:"
+            ),
+            Table(
+                ("ℓa/a0", "W/(E* a0)", "bound", "jumps", "W per jump", "cycles not closed"),
+                tuple(rows),
+            ),  # fmt: skip
+            *_set_blocks(hy),
+        ]
+    return B
 
 
 def _ms(d) -> str:
@@ -424,8 +446,10 @@ def _ms(d) -> str:
     return _n(d["mean"]) + ("" if d["seeds"] < 2 else f" ± {_n(d['sd'], 2)}")
 
 
-def _set_lines(hy) -> list[str]:
-    """§10's table per parameter set (mean ± sd over seeds)."""
+def _set_blocks(hy) -> list:
+    """§10's table per parameter set (mean ± sd over seeds), as blocks."""
+    from ..htmlreport import Para, Table
+
     sets = hy.get("by_parameter_set") or []
     if not sets:
         return []
@@ -436,19 +460,37 @@ def _set_lines(hy) -> list[str]:
         "(dissipated_energy, dissipated_energy_bound, jumps, energy_per_jump) that "
         "`study collect` now writes for new runs; both come from the same function"
     )
-    L = [
-        f"Per parameter set ({len(sets)}; mean ± sample standard deviation over its seeds, "
-        f"computed from {source}). W in units of E* a0 per A0; |W| of order 1e-12 is the "
-        "trapezoid's round-off of a cycle without jumps (no dissipation):",
-        "",
-        "| H | h′rms | λs/a0 | ℓa/a0 | seeds | W/(E* a0) | jumps | W per jump | not closed |",
-        "|---|---|---|---|---|---|---|---|---|",
+    return [
+        Para(
+            f"Per parameter set ({len(sets)}; mean ± sample standard deviation over its seeds, "
+            f"computed from {source}). W in units of E* a0 per A0; |W| of order 1e-12 is the "
+            "trapezoid's round-off of a cycle without jumps (no dissipation):"
+        ),
+        Table(
+            (
+                "H",
+                "h′rms",
+                "λs/a0",
+                "ℓa/a0",
+                "seeds",
+                "W/(E* a0)",
+                "jumps",
+                "W per jump",
+                "not closed",
+            ),
+            tuple(
+                (
+                    _n(r.get("hurst")),
+                    _n(r.get("rms_slope")),
+                    _n(r.get("short_cutoff")),
+                    _n(r.get("adhesion_length")),
+                    str(r["dissipated_energy"]["seeds"]),
+                    _ms(r["dissipated_energy"]),
+                    _ms(r["jumps"]),
+                    _ms(r["energy_per_jump"]),
+                    str(r["not_closed"]),
+                )
+                for r in sets
+            ),
+        ),  # fmt: skip
     ]
-    for r in sets:
-        L.append(
-            f"| {_n(r.get('hurst'))} | {_n(r.get('rms_slope'))} | {_n(r.get('short_cutoff'))} "
-            f"| {_n(r.get('adhesion_length'))} | {r['dissipated_energy']['seeds']} | "
-            f"{_ms(r['dissipated_energy'])} | {_ms(r['jumps'])} | "
-            f"{_ms(r['energy_per_jump'])} | {r['not_closed']} |"
-        )
-    return [*L, ""]

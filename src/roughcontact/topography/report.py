@@ -6,8 +6,8 @@
   -- matplotlib figures (imported only here, no pyplot state);
 * :func:`simulation_summary`, :func:`figure_contact_map` -- the simulation's lines and
   its contact map (``stick(..., simulate=True)``);
-* :func:`write_report` -- ``result.json`` and the figures in one directory, each file
-  written atomically (:func:`roughcontact._io.write_bytes_atomic`).
+* :func:`write_report` -- ``result.json``, the figures and ``report.html`` in one
+  directory, each file written atomically (:func:`roughcontact._io.write_bytes_atomic`).
 
 Everything is in SI units in the data; the figures label lengths in nm or um.
 """
@@ -153,16 +153,26 @@ def _figure(width=5.0, height=3.6):
     return figure(width, height)
 
 
-def figure_scan(result: StickResult):
-    """The analysed (detrended) heights: a map in nm over um, or the profile."""
+def figure_scan(result: StickResult, *, percentiles=None):
+    """The analysed (detrended) heights: a map in nm over um, or the profile.
+
+    ``percentiles`` ``(lo, hi)`` (e.g. ``(1, 99)``): the map's colour scale spans these
+    percentiles of the heights (robust to spikes; the colour bar extends at both ends);
+    default: the full range.
+    """
     topo, s = result.topography, result.statistics
     fig = _figure()
     ax = fig.add_subplot()
     h = np.asarray(topo.heights) / 1e-9
     if s.dim == 2:
         Lx, Ly = (n * a / 1e-6 for n, a in zip(s.shape, s.pixel_size, strict=True))
-        im = ax.imshow(h.T, origin="lower", extent=(0, Lx, 0, Ly), cmap="viridis")
-        fig.colorbar(im, ax=ax, label="height (nm)")
+        vmin = vmax = None
+        if percentiles is not None:
+            vmin, vmax = np.nanpercentile(h, percentiles)
+        im = ax.imshow(h.T, origin="lower", extent=(0, Lx, 0, Ly), cmap="viridis",
+                       vmin=vmin, vmax=vmax)  # fmt: skip
+        fig.colorbar(im, ax=ax, label="height (nm)",
+                     extend="neither" if percentiles is None else "both")  # fmt: skip
         ax.set_xlabel("x (um)")
         ax.set_ylabel("y (um)")
     else:
@@ -202,6 +212,9 @@ def figure_psd(result: StickResult):
     ax.text(q_c, 0.02, " measured scale", rotation=90, fontsize=7,
             transform=ax.get_xaxis_transform(), va="bottom")  # fmt: skip
     good = result.good_range
+    if good is not None and good.resolution is not None:
+        ax.axvline(2 * np.pi / good.resolution, color="C3", lw=1, linestyle="--",
+                   label="resolution limit")  # fmt: skip
     if good is not None and good.noise_level is not None:
         ax.axhline(good.noise_level, color="C3", lw=1, linestyle="-.", label="noise floor")
     if v.no_extrapolation:
@@ -292,12 +305,16 @@ def figure_contact_map(result: StickResult):
     return figure1([pressure], labels=[label], target_area=0.01)
 
 
-def write_report(result: StickResult, out_dir, *, formats=("png",), dpi: int = 150) -> dict:
-    """Write ``result.json`` and the figures into ``out_dir`` (created if needed).
+def write_report(
+    result: StickResult, out_dir, *, formats=("png",), dpi: int = 150, command=None
+) -> dict:
+    """Write ``result.json``, the figures and ``report.html`` into ``out_dir`` (created).
 
     Only these files are written, each atomically: ``result.json`` (``to_dict()``),
-    ``summary.txt`` (:func:`summary`) and ``scan``, ``psd``, ``slope``, ``margin`` in
-    every format; with a simulation also ``contact_map`` (:func:`figure_contact_map`).
+    ``summary.txt`` (:func:`summary`), ``scan``, ``psd``, ``slope``, ``margin`` in
+    every format; with a simulation also ``contact_map`` (:func:`figure_contact_map`);
+    ``report.html``, the same record as one self-contained page
+    (:func:`roughcontact.topography.html.stick_html`).
 
     Parameters
     ----------
@@ -308,11 +325,13 @@ def write_report(result: StickResult, out_dir, *, formats=("png",), dpi: int = 1
         matplotlib formats (``png``, ``pdf``, ``svg``).
     dpi : int
         Resolution of raster formats, in [10, 2400].
+    command : str, optional
+        The command line, for the page's provenance.
 
     Returns
     -------
     dict
-        ``{"result": path, "summary": path, "<figure>": [paths]}``.
+        ``{"result": path, "summary": path, "<figure>": [paths], "html": path}``.
     """
     from .._io import write_bytes_atomic
 
@@ -331,11 +350,15 @@ def write_report(result: StickResult, out_dir, *, formats=("png",), dpi: int = 1
             out / "summary.txt", ("\n".join(summary(result)) + "\n").encode()
         ),
     }
+    from .html import SCAN_PERCENTILES, stick_html
+
     figures = dict(FIGURES)
     if result.simulation is not None:
         figures["contact_map"] = figure_contact_map
+    made = {}  # each figure made once: for its files and for report.html
     for name, make in figures.items():
-        fig = make(result)
+        fig = make(result, percentiles=SCAN_PERCENTILES) if name == "scan" else make(result)
+        made[name] = fig
         if fig is None:
             continue
         written[name] = []
@@ -343,4 +366,6 @@ def write_report(result: StickResult, out_dir, *, formats=("png",), dpi: int = 1
             buffer = io.BytesIO()
             fig.savefig(buffer, format=fmt, dpi=dpi)
             written[name].append(write_bytes_atomic(out / f"{name}.{fmt}", buffer.getvalue()))
+    page = stick_html(result, command=command, dpi=min(dpi, 150), figures=made)
+    written["html"] = write_bytes_atomic(out / "report.html", page.encode())
     return written

@@ -272,7 +272,8 @@ def _figures(out: Path, ds):
 
 
 def _outputs(out: Path, size, seeds, summary, hard_wall=None) -> dict:
-    """Collect the finished study, draw the figures, write ``report.md``; the JSON dict."""
+    """Collect the finished study, draw the figures, write ``report.md`` and the study's
+    report (``study-report/``, with ``report.html``); the JSON dict."""
     from .._io import write_bytes_atomic, write_netcdf_atomic
     from ..plot._data import STATISTICAL_CONTACTS, eq4_outliers
     from ..studies import collect_study
@@ -298,10 +299,17 @@ def _outputs(out: Path, size, seeds, summary, hard_wall=None) -> dict:
     )
     # atomic, and a link planted at report.md is replaced rather than written through
     write_bytes_atomic(out / "report.md", ("\n".join(report) + "\n").encode("utf-8"))
+    # the study's own report (`roughcontact study report demo.nc -o study-report`): the
+    # paper's claims one by one, README.md and one self-contained report.html
+    from ..htmlreport import command_line
+    from ..studies.report import write_report as study_report
+
+    study_report(out / "demo.nc", out / "study-report", command=command_line())
     return {
         "table": rows,
         "summary": summary_text,
         "report": str(out / "report.md"),
+        "report_html": str(out / "study-report" / "report.html"),
         "dataset": str(out / "demo.nc"),
         "figures": {k: [str(x) for x in v] for k, v in figures.items()},
         "tasks": summary.tasks,
