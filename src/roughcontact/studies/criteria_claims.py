@@ -380,7 +380,7 @@ def report_lines(c) -> list[str]:
         L += [
             "",
             "Dahlquist's rule needs SI (no scale in lattice units) and Müser's parameter "
-            "(its definition unverified against Müser's paper) classifies the regime without "
+            "(R = 1/h''rms, as the Adhesion package evaluates it) classifies the regime without "
             "a stickiness threshold: neither gives a verdict here. The Fuller–Tabor threshold "
             "θ = 10 is a convention. No bearing-area criterion (Ciavarella's BAM, Violano et "
             "al.) is evaluated: its equations could not be checked against the papers (see "

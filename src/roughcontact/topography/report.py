@@ -52,6 +52,7 @@ def summary(result: StickResult) -> list[str]:
     lines = [f"verdict: {v.text}"]
     first = [n for n in result.notes if n.startswith("no extrapolated verdict")]
     lines += first
+    lines.append(_answers(v, lam_c))
     lines.append(
         f"measured down to {_length_text(lam_c)}: h'rms = {s.rms_slope:.3g}, "
         f"h''rms = {s.rms_curvature:.3g} 1/m, d_rep = {_length_text(s.d_rep)}, margin "
@@ -97,6 +98,22 @@ def summary(result: StickResult) -> list[str]:
         )
         lines += format_table(result.criteria).splitlines()
     return lines
+
+
+def _answers(v, lam_c) -> str:
+    """The whole surface's answer (``sticky``) beside the measured scale's
+    (``sticky_measured_scale``), as the JSON keys hold them."""
+    words = {True: "sticky", False: "not sticky", None: "undecided"}
+    whole = words[v.sticky]
+    if v.sticky is None and v.scope == "measured scale":
+        whole += " (nothing extrapolated below the measured scale)"
+    elif v.sticky is None:
+        whole += " (depends on unmeasured roughness)"
+    return (
+        f"answer for the whole surface (sticky): {whole}; with the roughness down to the "
+        f"measured {_length_text(lam_c)} only (sticky_measured_scale): "
+        f"{words[v.sticky_measured_scale]}"
+    )
 
 
 def simulation_summary(sim) -> list[str]:

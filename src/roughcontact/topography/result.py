@@ -20,6 +20,8 @@ __all__ = ["UNITS", "StickResult"]
 #: The unit of every number in :meth:`StickResult.to_dict` (dotted paths for nested keys;
 #: list entries take the unit of their list).
 UNITS = {
+    "sticky": "bool or null (the whole surface's answer; null: undecided)",
+    "sticky_measured_scale": "bool or null (Eq. 10 with the roughness down to measured_scale)",
     "margin": "1 (kappa_rep/kappa_att at the measured scale; > 1 sticky)",
     "margin_atomic": "1 (kappa_rep/kappa_att at lambda_s = a0, extrapolated)",
     "margin_atomic_range": "1",
@@ -90,6 +92,13 @@ UNITS = {
     "criterion_atomic.*": "SI: Pa, J/m^2, m, 1/m; see roughcontact criterion --json",
     "criteria.*": "SI: Pa, J/m^2, m, 1/m (inputs); each criterion's parameter is dimensionless;"
     " scale in m",
+    "model_checks.monti_sanner_pastewka.threshold": "1",
+    "model_checks.monti_sanner_pastewka.measured.scale": "m",
+    "model_checks.monti_sanner_pastewka.measured.g0": "m (16/3 h'rms^2/h''rms)",
+    "model_checks.monti_sanner_pastewka.measured.rho_over_g0": "1",
+    "model_checks.monti_sanner_pastewka.extrapolated.scale": "m",
+    "model_checks.monti_sanner_pastewka.extrapolated.g0": "m",
+    "model_checks.monti_sanner_pastewka.extrapolated.rho_over_g0": "1",
     "hysteresis.dissipated_energy_si": "J/m^2 (mean over seeds; _std: sample sd)",
     "hysteresis.dissipated_energy_scan": "J (over scan_area, extrapolated)",
     "hysteresis.scan_area": "m^2",
@@ -137,6 +146,10 @@ class StickResult:
         The simulation's approach–retraction cycles in SI (J/m², J over the scan):
         :func:`roughcontact.topography.hysteresis.simulation_hysteresis`; None without
         a simulation.
+    model_checks : dict or None
+        Checks of the model's assumptions the field uses
+        (:func:`roughcontact.topography.modelchecks.model_checks`: Monti, Sanner &
+        Pastewka's rho/g0 < 0.1 at the measured scale and extrapolated).
     """
 
     topography: object = field(repr=False)
@@ -149,11 +162,21 @@ class StickResult:
     kappa_rep_check: dict | None = None
     criteria: dict | None = None
     hysteresis: dict | None = None
+    model_checks: dict | None = None
 
     @property
     def sticky(self) -> bool | None:
-        """True, False, or None (depends on roughness below the resolved scale)."""
+        """The whole surface's answer: True or False only where it holds for every
+        smallest roughness scale down to a0 (or the necessary condition fails with the
+        measured roughness), else None (it depends on roughness below the resolved
+        scale, or nothing could be extrapolated)."""
         return self.verdict.sticky
+
+    @property
+    def sticky_measured_scale(self) -> bool | None:
+        """Eq. 10 with the measured roughness alone (at ``measured_scale``): True or
+        False, a scoped answer (roughness below that scale can flip it)."""
+        return self.verdict.sticky_measured_scale
 
     @property
     def margin(self) -> float:
@@ -172,6 +195,7 @@ class StickResult:
         crit_m, crit_a = v.measured, v.atomic
         d = {
             "sticky": v.sticky,
+            "sticky_measured_scale": v.sticky_measured_scale,
             "verdict": v.text,
             "margin": v.margin,
             "margin_atomic": v.margin_atomic,
@@ -276,6 +300,7 @@ class StickResult:
             "simulation": None if self.simulation is None else self.simulation.to_dict(),
             "criteria": self.criteria,
             "hysteresis": self.hysteresis,
+            "model_checks": self.model_checks,
             "units": dict(UNITS),
         }
         return json_safe(d)

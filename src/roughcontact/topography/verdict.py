@@ -256,14 +256,22 @@ def stick(
             scan_area=float(np.prod(topo.pixel_size) * np.prod(topo.shape))
             if len(topo.shape) == 2 else None,
         )  # fmt: skip
+    from .modelchecks import model_checks
+
+    checks = model_checks(stats, v)
     return StickResult(
+        model_checks=checks,
         criteria=_criteria(stats, m, inputs["youngs_modulus"], simulation),
         hysteresis=hysteresis,
         topography=topo,
         statistics=stats,
         verdict=v,
         inputs=inputs,
-        notes=tuple(notes + notes_for(topo, stats, v, good, moduli, check)),
+        notes=tuple(
+            notes
+            + notes_for(topo, stats, v, good, moduli, check)
+            + [checks["monti_sanner_pastewka"]["text"]]
+        ),
         simulation=simulation,
         good_range=good,
         kappa_rep_check=check,
