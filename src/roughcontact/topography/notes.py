@@ -27,7 +27,13 @@ from ..theory.pastewka_robbins import KAPPA_REP
 from ._text import length_text, range_text
 from .missing import fill_note
 
-__all__ = ["PAPER_WALL_KAPPA_REP", "kappa_rep_check", "notes_for", "simulation_notes"]
+__all__ = [
+    "PAPER_WALL_KAPPA_REP",
+    "channel_note",
+    "kappa_rep_check",
+    "notes_for",
+    "simulation_notes",
+]
 
 #: kappa_rep of the paper's smoothed 9-3 wall, measured with the paper's definition at
 #: A_rep = 1 % (module docstring).
@@ -91,6 +97,9 @@ def notes_for(topo, stats, v, good, moduli, check) -> list:
     m = v.measured
     lam_c, fit = stats.measured_scale, stats.fit
     notes = []
+    channel = channel_note(topo)
+    if channel:
+        notes.append(channel)
     missing = topo.info.get("missing_data") if hasattr(topo, "info") else None
     if missing:
         notes.append(fill_note(missing, int(np.prod(topo.shape))))
@@ -147,6 +156,25 @@ def notes_for(topo, stats, v, good, moduli, check) -> list:
             "extrapolation at its ends is not self-affine"
         )
     return notes
+
+
+def channel_note(topo) -> str:
+    """Which data channel of the file was read, and the others (``""`` for a record
+    without channels: a Topography built in Python)."""
+    info = getattr(topo, "info", {}) or {}
+    channels = info.get("channels")
+    name = getattr(topo, "channel", "")
+    if not channels:
+        return ""
+    index = info.get("channel_index", 0)
+    if len(channels) == 1:
+        return f"data channel: {name!r} (the file's only channel)"
+    others = ", ".join(f"{i} {c!r}" for i, c in enumerate(channels) if i != index)
+    return (
+        f"data channel read: {name!r} (index {index} of {len(channels)}); the file's other "
+        f"channels: {others}; --channel NAME or INDEX (channel=) reads another, whose h'rms "
+        "may differ"
+    )
 
 
 def _kappa_line(v, check) -> str:

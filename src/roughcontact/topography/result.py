@@ -283,6 +283,9 @@ class StickResult:
             "scan": {
                 "source": getattr(topo, "source", ""),
                 "channel": getattr(topo, "channel", ""),
+                "channel_index": (getattr(topo, "info", {}) or {}).get("channel_index"),
+                "channels": list((getattr(topo, "info", {}) or {}).get("channels") or []),
+                "tip_radius_stated": (getattr(topo, "info", {}) or {}).get("tip_radius_stated"),
                 "dim": s.dim,
                 "shape": list(s.shape),
                 "pixel_size": list(s.pixel_size),

@@ -171,6 +171,11 @@ def stick(
     if not float(np.std(topo.heights)) > 1e-12 * raw:  # what is left is round-off
         raise ParameterError(f"scan is flat after detrend={detrend!r}: no roughness to analyse")
     notes = []
+    from .fitrange import clamp_fit_range
+
+    fit_range, clamped = clamp_fit_range(fit_range, topo.pixel_size, topo.shape)
+    if clamped:
+        notes.append(clamped)
     cutoff, tip_source, cutoff_source = given_cutoff, "not used", "reliability_cutoff"
     if cutoff is None:
         from .prepare import reliability_cutoff as tip_cutoff
@@ -184,8 +189,7 @@ def stick(
             reliability.tip_radius_source,
         )
         cutoff_source = "tip radius" if cutoff is not None else "none (Nyquist wavelength)"
-        if tip is not None:
-            notes.append(f"reliability: {reliability.message}")
+        notes.append(_tip_note(topo, reliability))
     stats, good, problem, cutoff_source = _statistics(
         topo, cutoff, fit_range, detect=given_cutoff is None, source=cutoff_source
     )
@@ -275,6 +279,32 @@ def stick(
         simulation=simulation,
         good_range=good,
         kappa_rep_check=check,
+    )
+
+
+def _tip_note(topo, reliability) -> str:
+    """Where the tip radius of the reliability cutoff came from, or that none is stated."""
+    info = getattr(topo, "info", {}) or {}
+    stated = info.get("tip_radius_stated") or {}
+    if reliability.tip_radius_source == "argument":
+        return f"reliability (tip radius given): {reliability.message}"
+    if reliability.tip_radius_source == "file":
+        return (
+            f"reliability (tip radius stated in the file, {stated.get('text', '?')!r}, used "
+            f"for the cutoff, Sanner et al. 2022): {reliability.message}"
+        )
+    if stated.get("unreadable"):
+        return (
+            f"the file states a tip radius {stated.get('text')!r} whose unit is not a length: "
+            "not used; give --tip-radius (tip_radius=) for a tip-based reliability cutoff"
+        )
+    what = "the file states" if info.get("format") not in ("npy", "text", None) else (
+        "a .npy or text file states"
+    )
+    return (
+        f"{what} no tip or stylus radius: no tip-based reliability cutoff (the smallest "
+        "trusted scale comes from the spectrum: the instrument's limits found in the PSD, "
+        "else the Nyquist wavelength); give --tip-radius (tip_radius=) if you know it"
     )
 
 
