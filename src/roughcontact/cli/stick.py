@@ -98,6 +98,14 @@ def _pixel_size(text):
     "Default: fill up to 1 % of the scan, refuse more.",
 )
 @click.option(
+    "--outliers",
+    type=click.Choice(["remove", "keep"]),
+    default="remove",
+    show_default=True,
+    help="Spikes, sentinel values and isolated pixels (a robust rule, counted in a note): "
+    "remove them (filled like missing points) or keep them as heights.",
+)
+@click.option(
     "--fit-range",
     nargs=2,
     default=None,
@@ -162,8 +170,8 @@ def _pixel_size(text):
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object (SI units).")
 def stick(scan, channel, modulus, work, poisson, counter_modulus, counter_poisson, range_,
           tip_radius, reliability_cutoff, detrend, kappa_rep, atomic_spacing, pixel_size,
-          height_unit, periodic, fill_missing, fit_range, hurst_sigmas, out_dir, formats, dpi,
-          simulate, simulate_size, simulate_seeds, as_json):  # fmt: skip
+          height_unit, periodic, fill_missing, outliers, fit_range, hurst_sigmas, out_dir,
+          formats, dpi, simulate, simulate_size, simulate_seeds, as_json):  # fmt: skip
     """Is the surface in SCAN sticky? (Pastewka & Robbins 2014, Eq. 10.)
 
     SCAN is an instrument file (AFM, interferometer, stylus profilometer; read with
@@ -215,6 +223,7 @@ def stick(scan, channel, modulus, work, poisson, counter_modulus, counter_poisso
         fill_missing=fill_missing,
         counter_modulus=counter_modulus,
         counter_poisson=counter_poisson,
+        outliers=outliers,
     )
     if out_dir is not None:
         write_report(result, out_dir, formats=formats, dpi=dpi)

@@ -100,6 +100,17 @@ def notes_for(topo, stats, v, good, moduli, check) -> list:
     channel = channel_note(topo)
     if channel:
         notes.append(channel)
+    found = topo.info.get("outliers") if hasattr(topo, "info") else None
+    if found:
+        from .outliers import outlier_note
+
+        if found.get("points"):
+            notes.append(outlier_note(found, int(np.prod(topo.shape)), found.get("unit", "m")))
+        else:
+            notes.append(
+                "outliers: none found (spikes, sentinel values, isolated pixels; the rule of "
+                "roughcontact.topography.outliers)"
+            )
     missing = topo.info.get("missing_data") if hasattr(topo, "info") else None
     if missing:
         notes.append(fill_note(missing, int(np.prod(topo.shape))))

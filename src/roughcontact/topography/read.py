@@ -10,15 +10,14 @@ need nothing else.
 
 from __future__ import annotations
 
-import math
 import os
-import re
 from pathlib import Path
 
 import numpy as np
 
 from ..errors import ParameterError
 from ._grid import uniform_positions
+from ._metadata import instrument_info as _instrument_info
 from .missing import MISSING_FILL_MAX, missing_policy
 from .topography import Topography, length_factor, pixel_sizes
 
@@ -82,6 +81,7 @@ def load_topography(
     height_unit=None,
     fill_missing=None,
     resample=None,
+    outliers="keep",
 ) -> Topography:
     """Read a measured topography: heights and pixel size in metres, with the metadata.
 
@@ -149,11 +149,17 @@ def load_topography(
     from .._files import regular_input
 
     p = regular_input(path, "path", f"a .npy, text or instrument file ({_ACCEPTED})")
+    from .outliers import OUTLIER_MODES
+
+    if outliers not in OUTLIER_MODES:
+        raise ParameterError(
+            f"outliers must be one of {', '.join(OUTLIER_MODES)}, got {outliers!r}"
+        )
     kind = file_kind(p)
     if kind == "instrument":
         try:
             topo = _read_instrument(
-                p, channel, periodic, pixel_size, height_unit, fill_missing, resample
+                p, channel, periodic, pixel_size, height_unit, fill_missing, resample, outliers
             )
         except ParameterError:
             raise
@@ -163,7 +169,9 @@ def load_topography(
                 f"not be read ({_why(exc)}); expected {_ACCEPTED}"
             ) from None
     else:
-        topo = _read_plain(p, kind, channel, periodic, pixel_size, height_unit, fill_missing)
+        topo = _read_plain(
+            p, kind, channel, periodic, pixel_size, height_unit, fill_missing, outliers
+        )
     _plausible(p, kind, topo)
     return topo
 
@@ -179,7 +187,7 @@ def _plausible(p, kind, topo) -> None:
         check_header(p, topo.info.get("format", ""), topo.shape)
 
 
-def _read_plain(p, kind, channel, periodic, pixel_size, height_unit, fill_missing):
+def _read_plain(p, kind, channel, periodic, pixel_size, height_unit, fill_missing, outliers):
     from .._files import read_array
 
     if channel not in (None, 0, "0", "heights"):
@@ -207,13 +215,29 @@ def _read_plain(p, kind, channel, periodic, pixel_size, height_unit, fill_missin
         px = pixel_size
         info["length_unit"] = "m"
         info["units"] = f"from the caller: pixel_size in m, heights in {unit}"
-    data, info = _missing(p, data, fill_missing, periodic, info)
+    shown = "m" if info["length_unit"] == "m" else "(as stored)"
+    data, info = _missing(p, data, fill_missing, periodic, info, outliers, shown)
     return _record(data, px, periodic, "heights", p, unit, info)
 
 
-def _missing(p, data, fill_missing, periodic, info):
-    """Fill or refuse the missing points (NaN or masked): :mod:`.missing`'s policy."""
-    values, new_info = missing_policy(f"path {str(p)!r}", data, fill_missing, periodic, info)
+def _missing(p, data, fill_missing, periodic, info, outliers="keep", unit=""):
+    """Look for outliers (:mod:`.outliers`; ``"remove"``: they become missing points),
+    then fill or refuse the missing points (NaN or masked): :mod:`.missing`'s policy."""
+    from .outliers import find_outliers
+
+    missing = np.ma.getmaskarray(data) | ~np.isfinite(np.ma.getdata(data))
+    values = np.array(np.ma.getdata(data), dtype=np.float64)
+    found, report = find_outliers(values, missing, periodic=periodic)
+    removed = outliers == "remove" and report["points"] > 0
+    report["action"] = "removed" if removed else "kept"
+    report["unit"] = str(unit)
+    info = {**info, "outliers": report}
+    if removed:
+        data = np.ma.masked_array(values, mask=missing | found)
+    values, new_info = missing_policy(
+        f"path {str(p)!r}", data, fill_missing, periodic, info,
+        outliers=report["points"] if removed else 0,
+    )  # fmt: skip
     return values, info if new_info is None else new_info
 
 
@@ -310,7 +334,9 @@ def _choose_channel(p, reader, channel):
     )
 
 
-def _read_instrument(p, channel, periodic, pixel_size, height_unit, fill_missing, resample):
+def _read_instrument(
+    p, channel, periodic, pixel_size, height_unit, fill_missing, resample, outliers="keep"
+):
     reader = _open_reader(p)
     try:
         ch = _choose_channel(p, reader, channel)
@@ -354,7 +380,7 @@ def _read_instrument(p, channel, periodic, pixel_size, height_unit, fill_missing
     info = _instrument_info(reader, ch, info_in)
     if x is not None:
         data, steps, info = _resample(p, np.asarray(x), data, resample, fill_missing, info)
-    data, info = _missing(p, data, fill_missing, periodic, info)
+    data, info = _missing(p, data, fill_missing, periodic, info, outliers, str(unit))
     px = tuple(float(s) * length_factor("lateral unit", lateral) for s in steps)
     info["scan_size"] = [n * s for n, s in zip(data.shape, px, strict=True)]
     heights = data * length_factor("height unit", unit)
@@ -442,104 +468,3 @@ def _resample(p, x, heights, resample, fill_missing, info):
         "max_deviation_steps": deviation,
     }
     return out, (step,), info
-
-
-def _instrument_info(reader, ch, topo_info) -> dict:
-    """JSON-ready metadata: the format, the channels, the instrument, the tip radius (m)."""
-    try:
-        from SurfaceTopography import __version__ as version
-    except ImportError:  # pragma: no cover - imported already
-        version = "?"
-    meta = {**(getattr(ch, "info", {}) or {}), **topo_info}
-    raw = meta.pop("raw_metadata", None)  # vendor key/value dumps: large, not always JSON
-    info = {
-        "format": _format(reader),
-        "reader": f"SurfaceTopography {version}",
-        "length_unit": "m",
-        "channel_index": int(ch.index),
-        "channels": [c.name for c in reader.channels],
-        "height_scale_factor": getattr(ch, "height_scale_factor", None),
-        **meta,
-    }
-    if getattr(ch, "channel_id", None) is not None:
-        info["channel_id"] = str(ch.channel_id)
-    radius, where, stated = _tip_radius(meta, raw if isinstance(raw, dict) else None)
-    if radius is not None:
-        info["tip_radius"] = radius
-        info["tip_radius_stated"] = {"text": stated, "key": where}
-    elif stated is not None:  # stated, but its unit is no length we know
-        info["tip_radius_stated"] = {"text": stated, "key": "", "unreadable": True}
-    return info
-
-
-#: Spellings of "micro" that a unit reaches us in: the micro sign, the Greek mu, and the
-#: micro sign of a UTF-8 file read as Latin-1 ("Âµ") or with its byte lost (U+FFFD).
-_MICRO = ("\u00c2\u00b5", "\u00b5", "\u03bc", "\ufffd")
-#: A number and a unit in a vendor's metadata value ("Radius: 2 µm", "2.5um").
-_RADIUS_VALUE = re.compile(r"([-+]?\d+(?:\.\d*)?(?:[eE][-+]?\d+)?)\s*([^\s,;:()]+)")
-
-
-def _unit_text(unit) -> str:
-    """A length unit's text with every spelling of micro as ``u``."""
-    text = str(unit).strip()
-    for micro in _MICRO:
-        text = text.replace(micro, "u")
-    return text
-
-
-def _micro_sign(text) -> str:
-    """``text`` with the micro sign in place of its mis-decoded spellings ("Âµ", "μ")."""
-    return str(text).replace("\u00c2\u00b5", "\u00b5").replace("\u03bc", "\u00b5")
-
-
-def _radius_metres(value, unit) -> float | None:
-    try:
-        r = float(value) * length_factor("tip radius unit", _unit_text(unit))
-    except (ParameterError, TypeError, ValueError):
-        return None
-    return r if math.isfinite(r) and r > 0 else None
-
-
-def _flat(d, depth=0):
-    """(key, value) pairs of a nested metadata dict, leaves only (4 levels at most)."""
-    for key, value in d.items():
-        if isinstance(value, dict):
-            if depth < 4:
-                yield from _flat(value, depth + 1)
-        elif isinstance(value, (str, int, float)):
-            yield key, value
-
-
-def _tip_radius(meta, raw=None) -> tuple:
-    """The tip or stylus radius the file states: ``(metres or None, where, as written)``.
-
-    First SurfaceTopography's reading (``instrument.parameters.tip_radius``: value and
-    unit, the unit's "µ" in any of its spellings, :data:`_MICRO`), then the vendor's own
-    key/value pairs (``raw``): a key naming a tip, stylus, probe or cantilever radius,
-    or a value of the form "Radius: 2 µm". ``where`` says which; ``as written`` is the
-    file's text. A stated radius whose unit is not a length gives None with its text.
-    """
-    stated = None
-    try:
-        r = meta["instrument"]["parameters"]["tip_radius"]
-        stated = f"{r['value']} {_micro_sign(r['unit'])}"
-        value = _radius_metres(r["value"], r["unit"])
-        if value is not None:
-            return value, "instrument.parameters.tip_radius", stated
-    except (KeyError, TypeError):
-        pass
-    for key, text in _flat(raw or {}):
-        k, v = str(key), str(text)
-        named = re.search(r"(tip|stylus|probe|needle).*radius|radius.*(tip|stylus|probe)", k, re.I)
-        if not (named or v.lower().lstrip().startswith("radius")):
-            continue
-        if "cantilever" in k.lower():
-            continue  # a cantilever's radius is not the tip's
-        found = _RADIUS_VALUE.search(v.split(":", 1)[-1] if ":" in v else v)
-        if found is None:
-            continue
-        value = _radius_metres(*found.groups())
-        stated = f"{k}: {_micro_sign(v.strip())}"
-        if value is not None:
-            return value, f"metadata {k!r}", stated
-    return None, "", stated

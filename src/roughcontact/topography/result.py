@@ -88,6 +88,16 @@ UNITS = {
     "kappa_rep_comparison.*": "1 (kappa_rep; margin at the measured scale)",
     "missing_data.points": "grid points",
     "missing_data.fraction": "1",
+    "missing_data.outliers": "grid points (outliers removed among the missing points)",
+    "missing_data.slope_change": "1 (rms slope of the filled scan / of the measured pixels - 1)",
+    "outliers.points": "grid points",
+    "outliers.fraction": "1",
+    "outliers.spikes": "grid points",
+    "outliers.sentinel_value": "outliers.unit (the file's height unit)",
+    "outliers.sentinel_points": "grid points",
+    "outliers.isolated": "grid points",
+    "outliers.threshold": "1 (robust standard deviations)",
+    "outliers.scale": "outliers.unit (per direction)",
     "criterion_measured.*": "SI: Pa, J/m^2, m, 1/m; see roughcontact criterion --json",
     "criterion_atomic.*": "SI: Pa, J/m^2, m, 1/m; see roughcontact criterion --json",
     "criteria.*": "SI: Pa, J/m^2, m, 1/m (inputs); each criterion's parameter is dimensionless;"
@@ -232,6 +242,7 @@ class StickResult:
             "good_range": None if self.good_range is None else self.good_range.to_dict(),
             "kappa_rep_comparison": self._kappa_rep_dict(),
             "missing_data": dict(getattr(topo, "info", {}).get("missing_data") or {}) or None,
+            "outliers": dict(getattr(topo, "info", {}).get("outliers") or {}) or None,
             "extrapolated": None
             if crit_a is None
             else {

@@ -68,6 +68,7 @@ def stick(
     fill_missing=None,
     counter_modulus=None,
     counter_poisson=None,
+    outliers="remove",
 ) -> StickResult:
     """Is this measured surface sticky? Pastewka & Robbins (2014), Eq. 10, for a scan.
 
@@ -140,6 +141,12 @@ def stick(
         :data:`~roughcontact.topography.read.MISSING_FILL_MAX` of the scan by harmonic
         interpolation, with a note, and refuses more; True fills any fraction (with a
         note stating it); False refuses any.
+    outliers : {"remove", "keep"}
+        Spikes, sentinel values and isolated pixels (the rule of
+        :mod:`roughcontact.topography.outliers`): "remove" (default) treats them as
+        missing points (filled by harmonic interpolation, under ``fill_missing``'s
+        limit), "keep" analyses them as heights; either way they are counted in a note
+        and in ``to_dict()["outliers"]``.
     counter_modulus, counter_poisson : float or str, optional
         The counter-surface's Young's modulus and Poisson ratio (or its plane-strain
         modulus without ``counter_poisson``): ``1/E* = (1-nu1^2)/E1 + (1-nu2^2)/E2``
@@ -162,7 +169,9 @@ def stick(
     given_cutoff = _length("reliability_cutoff", reliability_cutoff)
     if tip is not None and given_cutoff is not None:
         raise ParameterError("give tip_radius or reliability_cutoff, not both")
-    topo = _read(scan, channel, pixel_size, height_unit, periodic, fill_missing, Topography)
+    topo = _read(
+        scan, channel, pixel_size, height_unit, periodic, fill_missing, Topography, outliers
+    )
     from .._plausibility import check_heights
 
     check_heights(topo.heights, "scan")  # |h| past 1e150 is out of range, not "flat"
@@ -228,6 +237,7 @@ def stick(
         "detrend": detrend,
         "hurst_sigmas": float(hurst_sigmas),
         "fill_missing": fill_missing,
+        "outliers": outliers,
     }  # fmt: skip
     simulation = None
     if simulate and problem:
@@ -355,14 +365,21 @@ def _statistics(topo, cutoff, fit_range, *, detect, source):
     return stats, good, problem, f"instrument {what} (detected in the PSD)"
 
 
-def _read(scan, channel, pixel_size, height_unit, periodic, fill_missing, Topography):
-    """The scan as a Topography in metres (a file read by ``load_topography``)."""
+def _read(scan, channel, pixel_size, height_unit, periodic, fill_missing, Topography, outliers):
+    """The scan as a Topography in metres (a file read by ``load_topography``), its
+    outliers removed or kept (:mod:`.outliers`)."""
+    from .outliers import OUTLIER_MODES
+
+    if outliers not in OUTLIER_MODES:
+        raise ParameterError(
+            f"outliers must be one of {', '.join(OUTLIER_MODES)}, got {outliers!r}"
+        )
     if isinstance(scan, Topography):
         if channel is not None or pixel_size is not None or height_unit is not None:
             raise ParameterError(
                 "channel, pixel_size and height_unit apply to a file, not to a Topography"
             )
-        topo = scan  # a Topography holds no missing points (it refuses NaN)
+        topo = _topography_outliers(scan, outliers, fill_missing)
     else:
         from .read import load_topography
 
@@ -373,7 +390,7 @@ def _read(scan, channel, pixel_size, height_unit, periodic, fill_missing, Topogr
             px = tuple(_length("pixel_size", p) for p in px)
         topo = load_topography(
             scan, channel=channel, periodic=bool(periodic), pixel_size=px,
-            height_unit=height_unit, fill_missing=fill_missing,
+            height_unit=height_unit, fill_missing=fill_missing, outliers=outliers,
         )  # fmt: skip
     if topo.length_unit != "m":
         raise ParameterError(
@@ -381,6 +398,27 @@ def _read(scan, channel, pixel_size, height_unit, periodic, fill_missing, Topogr
             "for a file without units, e.g. pixel_size='10 nm', height_unit='nm'"
         )
     return topo
+
+
+def _topography_outliers(topo, outliers, fill_missing):
+    """A Topography given in Python: its outliers found, and removed (filled as missing
+    points) or kept, as for a file."""
+    import dataclasses
+
+    from .missing import missing_policy
+    from .outliers import find_outliers
+
+    found, report = find_outliers(topo.heights, periodic=topo.periodic)
+    removed = outliers == "remove" and report["points"] > 0
+    report = {**report, "action": "removed" if removed else "kept", "unit": topo.length_unit}
+    info = {**topo.info, "outliers": report}
+    if not removed:
+        return dataclasses.replace(topo, info=info)
+    data = np.ma.masked_array(topo.heights, mask=found)
+    values, new = missing_policy(
+        "scan", data, fill_missing, topo.periodic, info, outliers=report["points"]
+    )
+    return dataclasses.replace(topo, heights=values, info=new)
 
 
 def _detrend(topo, mode):
