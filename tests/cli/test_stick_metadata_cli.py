@@ -83,3 +83,40 @@ def test_a_fit_range_beyond_the_data_is_clamped_with_a_note():
     assert not any("Hurst fit from 1 nm" in n for n in d["notes"])
     err = cli_one_line_error(_run([nid, *SILICON, "--fit-range", "1nm", "200nm"]))
     assert "fit_range" in err and "less than an octave" in err
+
+
+# ------------------------------------------------ item 9: a bare length for a .npy file
+
+
+@pytest.fixture
+def npy(tmp_path):
+    import numpy as np
+
+    import roughcontact as rc
+
+    h = rc.self_affine((64, 64), hurst=0.8, rms_height=1.0, short_cutoff=2, seed=1)
+    path = tmp_path / "surface.npy"
+    np.save(path, h)
+    return path
+
+
+PDMS = ["--modulus", "1MPa", "--work-of-adhesion", "50mJ/m^2"]
+
+
+def test_a_bare_pixel_size_is_metres_and_said_or_refused(npy):
+    """``--pixel-size 2`` is 2 m pixels: out of the plausible range, refused naming the
+    missing unit; a bare number in range is read as metres and said, first thing."""
+    err = cli_one_line_error(_run([npy, "--pixel-size", "2", "--height-unit", "nm", *PDMS]))
+    assert "pixel size 2 m is out of range" in err and "'2 nm'" in err
+    r = _run([npy, "--pixel-size", "2e-9", "--height-unit", "nm", *PDMS])
+    assert r.exit_code == 0, r.output
+    lines = r.output.splitlines()
+    assert lines[1].startswith("pixel_size '2e-9' was given without a unit: read as metres")
+    d = json.loads(_run([npy, "--pixel-size", "2e-9", "--height-unit", "nm", *PDMS,
+                         "--json"]).output)  # fmt: skip
+    assert any("without a unit" in n for n in d["notes"])
+    with_unit = _run([npy, "--pixel-size", "2 nm", "--height-unit", "nm", *PDMS]).output
+    assert "without a unit" not in with_unit
+    # heights without --height-unit are metres: 6 m of peak-to-valley is refused
+    err = cli_one_line_error(_run([npy, "--pixel-size", "2 nm", *PDMS]))
+    assert "peak-to-valley" in err and "--height-unit" in err

@@ -23,14 +23,16 @@ __all__ = ["stick"]
 
 
 def _pixel_size(text):
-    """``"10 nm"`` or ``"10nm,20nm"`` (one per axis) in metres; None stays None."""
+    """``"10 nm"`` or ``"10nm,20nm"`` (one per axis), checked and passed on as text (a
+    bare number is metres, and the library says so next to the result); None stays None."""
     if text is None:
         return None
     from ..criterion import parse_quantity
 
-    parts = [p for p in str(text).split(",") if p.strip()]
-    sizes = tuple(parse_quantity(p, "length", "--pixel-size") for p in parts)
-    return sizes[0] if len(sizes) == 1 else sizes
+    parts = tuple(p.strip() for p in str(text).split(",") if p.strip())
+    for p in parts:  # one-line errors naming the option; the library reads the text
+        parse_quantity(p, "length", "--pixel-size")
+    return parts[0] if len(parts) == 1 else parts
 
 
 @click.command("stick")
@@ -85,7 +87,8 @@ def _pixel_size(text):
 @click.option(
     "--pixel-size",
     default=None,
-    help="Grid spacing of a .npy/text file, e.g. '2 nm' (or 'X,Y' per axis).",
+    help="Grid spacing of a .npy/text file, e.g. '2 nm' (or 'X,Y' per axis); a bare "
+    "number is metres (said in the output).",
 )
 @click.option(
     "--height-unit", default=None, help="Unit of a .npy/text file's heights (m, nm, ...)."

@@ -97,6 +97,9 @@ def notes_for(topo, stats, v, good, moduli, check) -> list:
     m = v.measured
     lam_c, fit = stats.measured_scale, stats.fit
     notes = []
+    warning = topo.info.get("units_warning") if hasattr(topo, "info") else None
+    if warning:
+        notes.append(warning)
     channel = channel_note(topo)
     if channel:
         notes.append(channel)

@@ -50,7 +50,11 @@ def summary(result: StickResult) -> list[str]:
     c = v.centre
     lam_c, a0 = s.measured_scale, float(result.inputs["atomic_spacing"])
     lines = [f"verdict: {v.text}"]
-    first = [n for n in result.notes if n.startswith("no extrapolated verdict")]
+    first = [
+        n
+        for n in result.notes
+        if n.startswith("no extrapolated verdict") or n.startswith("pixel_size '")
+    ]
     lines += first
     lines.append(_answers(v, lam_c))
     lines.append(

@@ -384,6 +384,8 @@ def _read(scan, channel, pixel_size, height_unit, periodic, fill_missing, Topogr
         from .read import load_topography
 
         px = pixel_size
+        given = [] if px is None else list(px) if isinstance(px, (tuple, list)) else [px]
+        bare = [str(p).strip() for p in given if isinstance(p, str) and _is_number(p)]
         if px is not None and not isinstance(px, (tuple, list)):
             px = _length("pixel_size", px)
         elif px is not None:
@@ -397,7 +399,48 @@ def _read(scan, channel, pixel_size, height_unit, periodic, fill_missing, Topogr
             "scan has no length unit (lattice units): give pixel_size (m) and height_unit "
             "for a file without units, e.g. pixel_size='10 nm', height_unit='nm'"
         )
+    if not isinstance(scan, Topography) and topo.info.get("format") in ("npy", "text"):
+        topo = _plausible_units(topo, bare, height_unit)
     return topo
+
+
+def _is_number(text) -> bool:
+    try:
+        float(str(text).strip())
+    except ValueError:
+        return False
+    return True
+
+
+def _plausible_units(topo, bare, height_unit):
+    """A .npy/text file's units are the caller's: the bounds of an instrument file's
+    (:func:`roughcontact._plausibility.check_metres`) refuse absurd ones, and a bare
+    number given as a length (metres) is said next to the result."""
+    import dataclasses
+
+    from .._plausibility import check_metres
+
+    hint = ""
+    if bare:
+        hint = (
+            f"; pixel_size {', '.join(repr(b) for b in bare)} has no unit and was read as "
+            f"metres: give e.g. '{bare[0]} nm' (--pixel-size '{bare[0]} nm')"
+        )
+    if height_unit is None:
+        hint += "; the heights were read as metres (no height_unit, --height-unit, given)"
+    try:
+        check_metres(topo.heights, topo.pixel_size, "scan")
+    except ParameterError as exc:
+        raise ParameterError(f"{exc}{hint}") from None
+    if not bare:
+        return topo
+    px = ", ".join(dict.fromkeys(_length_text(a) for a in topo.pixel_size))
+    warning = (
+        f"pixel_size {', '.join(repr(b) for b in bare)} was given without a unit: read as "
+        f"metres (pixel size {px}); if you meant another unit, give it (e.g. "
+        f"--pixel-size '{bare[0]} nm')"
+    )
+    return dataclasses.replace(topo, info={**topo.info, "units_warning": warning})
 
 
 def _topography_outliers(topo, outliers, fill_missing):
