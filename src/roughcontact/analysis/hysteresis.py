@@ -98,6 +98,17 @@ class Hysteresis:
         W in J/m² when the path's length and pressure scales are given, else NaN.
     warnings : tuple of str
         Why the number may not be the cycle's dissipation.
+    raw_dissipated_energy : float
+        The trapezoid's ``-∮ N dd`` before the rule below (same unit).
+    zero_within_tolerance : bool
+        True when ``dissipated_energy`` is reported as 0: a cycle without jumps that
+        returns to its first offset dissipates nothing elastically (its states are on
+        one branch, where the energy is a potential), so what the trapezoid gives is
+        numerical (the solver's tolerance); also a slightly negative W within
+        ``energy_uncertainty``. ``energy_uncertainty`` is then the bound it lies within.
+    tolerance : float
+        The solver's part of the bound: ``solver_tolerance × Σ|Δd|`` (NaN when the
+        solver's tolerance is not known).
     """
 
     dissipated_energy: float
@@ -111,6 +122,9 @@ class Hysteresis:
     closed: bool
     dissipated_energy_si: float = math.nan
     warnings: tuple = ()
+    raw_dissipated_energy: float = math.nan
+    zero_within_tolerance: bool = False
+    tolerance: float = math.nan
 
     def to_dict(self) -> dict:
         """JSON-ready (non-finite numbers become None)."""
@@ -135,6 +149,7 @@ def hysteresis_from_steps(
     length_scale: float | None = None,
     pressure_scale: float | None = None,
     load_tolerance: float | None = None,
+    solver_tolerance: float | None = None,
 ) -> Hysteresis:
     """:class:`Hysteresis` of one path given as arrays over its steps (in path order).
 
@@ -153,6 +168,15 @@ def hysteresis_from_steps(
     load_tolerance : float, optional
         ``|N/A0|`` below which the end of the retraction counts as separated; default 1e-6
         of the largest ``|N/A0|`` on the path.
+    solver_tolerance : float, optional
+        How far a converged step's N/A0 may be from the exact one [pressure] (the
+        solver's tolerance on the force balance per site): the bound of a jump-free
+        cycle's W is ``solver_tolerance × Σ|Δd|``.
+
+    A cycle without jumps (``jump`` given, none flagged) that returns to its first offset
+    dissipates nothing: W is reported as 0 (``zero_within_tolerance``) with the bound
+    ``max(solver bound, |raw W|)``; a negative W within the trapezoid's bound is 0 too.
+    W is never reported negative otherwise without a warning.
     """
     d = np.asarray(offset, dtype=float).ravel()
     n = np.asarray(load, dtype=float).ravel()
@@ -186,6 +210,26 @@ def hysteresis_from_steps(
             "with zero load): W includes energy still stored"
         )
     jumps = ja + jr
+    raw, zero = W, False
+    path_length = float(np.sum(dd))
+    solver = math.nan if solver_tolerance is None else float(solver_tolerance) * path_length
+    bound = 0.0 if not math.isfinite(solver) else solver
+    if jump is not None and jumps == 0 and np.isclose(d[-1], d[0]):
+        zero, W = True, 0.0
+        err = max(bound, abs(raw))
+        if math.isfinite(solver) and abs(raw) > solver:
+            warnings.append(
+                f"a cycle without jumps gave W = {raw:.3g}, beyond the solver's bound "
+                f"{solver:.3g}: reported as 0 within {err:.3g} (unconverged steps?)"
+            )
+    elif W < 0 and abs(W) <= err + bound:
+        zero, W = True, 0.0
+        err = max(err + bound, abs(raw))
+    elif W < 0:
+        warnings.append(
+            f"W = {W:.3g} is negative beyond its bound {err + bound:.3g}: a cycle cannot "
+            "produce energy; the steps are too coarse or did not converge"
+        )
     si = math.nan
     if length_scale is not None and pressure_scale is not None:
         si = W * positive("length_scale", length_scale) * positive("pressure_scale", pressure_scale)
@@ -196,7 +240,7 @@ def hysteresis_from_steps(
         dissipated_energy=W,
         energy_uncertainty=err,
         approach_work=wa,
-        retract_work=W - wa,
+        retract_work=raw - wa,
         jumps=jumps,
         jumps_in=ja,
         jumps_out=jr,
@@ -204,11 +248,17 @@ def hysteresis_from_steps(
         closed=closed,
         dissipated_energy_si=si,
         warnings=tuple(warnings),
+        raw_dissipated_energy=raw,
+        zero_within_tolerance=zero,
+        tolerance=solver,
     )
 
 
-def hysteresis(ds, *, length_scale=None, pressure_scale=None) -> Hysteresis:
+def hysteresis(ds, *, length_scale=None, pressure_scale=None, solver_tolerance=None):
     """:func:`hysteresis_from_steps` of a path dataset (:func:`roughcontact.approach_retract`).
+
+    ``solver_tolerance``: the bound on a step's N/A0 from the solver's tolerance (see
+    :func:`hysteresis_from_steps`).
 
     ``length_scale``/``pressure_scale``: metres per the path's length unit and pascals per
     its pressure unit (for a scan simulated in lattice units: a0 in m and E* in Pa); the
@@ -223,6 +273,7 @@ def hysteresis(ds, *, length_scale=None, pressure_scale=None) -> Hysteresis:
         get("converged"),
         length_scale=length_scale,
         pressure_scale=pressure_scale,
+        solver_tolerance=solver_tolerance,
     )
 
 

@@ -151,18 +151,34 @@ def hysteresis_summary(hy) -> list[str]:
     w, sd = hy["dissipated_energy_si"], hy["dissipated_energy_si_std"]
     if not np.isfinite(w):
         return ["hysteresis: not measured (no seed's cycle has a retraction)"]
+    seeds = hy["seeds"]
+    if seeds and all(s.get("zero_within_tolerance") for s in seeds):
+        bound = max(float(s["energy_uncertainty_si"]) for s in seeds)
+        return [
+            f"hysteresis: none: no seed's cycle has a jump, so the energy dissipated per "
+            f"approach–retraction cycle is 0 within ± {bound:.2g} J/m^2 (the solver's "
+            "tolerance)",
+            f"hysteresis per seed: {'; '.join(_seed_energy(s) for s in seeds)}",
+        ] + [f"note: {n}" for n in hy["notes"]]
     spread = f" ± {sd:.3g}" if np.isfinite(sd) else " (1 seed: no spread)"
     scan = hy["dissipated_energy_scan"]
-    per_seed = "; ".join(
-        f"seed {s['seed']}: {s['dissipated_energy_si']:.3g} J/m^2, {s['jumps']} jumps"
-        for s in hy["seeds"]
-    )
+    per_seed = "; ".join(_seed_energy(s) for s in hy["seeds"])
     return [
         f"hysteresis: energy dissipated per approach–retraction cycle {w:.3g}{spread} J/m^2 "
         f"(mean ± sd over seeds), {hy['jumps_mean']:.3g} jumps per cycle"
         + (f"; over the scanned area {scan:.3g} J" if np.isfinite(scan) else ""),
         f"hysteresis per seed: {per_seed}",
     ] + [f"note: {n}" for n in hy["notes"]]
+
+
+def _seed_energy(s) -> str:
+    """One seed's dissipated energy: a jump-free cycle as 0 within its bound."""
+    if s.get("zero_within_tolerance"):
+        return (
+            f"seed {s['seed']}: 0 (within ± {s['energy_uncertainty_si']:.2g}) J/m^2, "
+            f"{s['jumps']} jumps"
+        )
+    return f"seed {s['seed']}: {s['dissipated_energy_si']:.3g} J/m^2, {s['jumps']} jumps"
 
 
 # --------------------------------------------------------------------------- figures

@@ -116,6 +116,8 @@ UNITS = {
     "hysteresis.seeds.dissipated_energy": "E* a0 per A0 (the simulation's lattice units)",
     "hysteresis.seeds.dissipated_energy_si": "J/m^2",
     "hysteresis.seeds.energy_uncertainty_si": "J/m^2",
+    "hysteresis.seeds.raw_dissipated_energy_si": "J/m^2 (the trapezoid's, before the zero rule)",
+    "hysteresis.seeds.tolerance_si": "J/m^2 (the solver's tolerance x the path's length)",
     "hysteresis.seeds.energy_per_jump_joules": "J (over patch_area)",
     "hysteresis.seeds.patch_area": "m^2 (the simulated patch, size^2 a0^2)",
     **SIMULATION_UNITS,
