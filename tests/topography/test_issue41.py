@@ -76,3 +76,50 @@ def test_muser_parameter_in_stick_uses_r_equal_one_over_curvature():
     expected = (1 / inputs["rms_curvature"]) ** (1 / 3) * la ** (2 / 3) / (0.5 * NM)
     assert m["parameter"] == pytest.approx(expected, rel=1e-9)
     assert "unverified" not in m["verdict"]
+
+
+# ------------------------------------------- item 8: --simulate for a soft material
+
+
+def test_soft_simulation_says_why_in_words_a_stick_user_can_act_on(tmp_path):
+    """PDMS-like (l_a/a0 = 83): every seed jumps into contact before 1 % repulsive area.
+    The seeds' line and notes say so (no bare "failed", no `roughcontact path` advice),
+    and Eq. 10's "undecided" on the same surfaces comes with its reason."""
+    h = rc.self_affine(128, hurst=0.8, rms_slope=0.1, short_cutoff=1.2, pixel_size=0.6, seed=5)
+    path = tmp_path / "fine.npy"
+    np.save(path, h)
+    r = stick(path, pixel_size="0.6 nm", height_unit="nm", periodic=True, detrend="height",
+              modulus="2 MPa", work_of_adhesion="0.05 J/m^2", simulate=True,
+              simulate_size=64, simulate_seeds=1)  # fmt: skip
+    text = "\n".join(summary(r))
+    assert "failed" not in text and "roughcontact path" not in text
+    assert "--until-area" not in text
+    seeds_line = next(x for x in summary(r) if x.startswith("per seed kappa"))
+    assert "seed 1: jumped into contact, no kappa" in seeds_line
+    assert any("soft-solid limit" in n for n in r.simulation.notes)
+    sim_line = next(x for x in summary(r) if x.startswith("simulated:"))
+    if r.simulation.predicted_verdict == "undecided":
+        assert "undecided (" in sim_line  # with its reason
+
+
+def test_contact_map_title_and_legend_give_the_same_area():
+    """The map is the approach's state nearest 1 %: its own A_rep/A0 (0.0039 here) in the
+    panel title and in the legend, not the 1 % target; an empty state gives no map."""
+    from types import SimpleNamespace
+
+    from roughcontact.topography.report import figure_contact_map
+
+    p = np.zeros((32, 32))
+    p[:2, :2] = 1.0  # A_rep/A0 = 4/1024 = 0.0039
+    p[5:9, 5:9] = -1.0
+
+    def result(pressure):
+        sim = SimpleNamespace(contact_map=(1, pressure), verdict="sticky",
+                              interaction={"adhesion_length_over_a0": 0.05})  # fmt: skip
+        return SimpleNamespace(simulation=sim)
+
+    fig = figure_contact_map(result(p))
+    title = fig.axes[0].get_title()
+    legend = fig.legends[0].get_title().get_text()
+    assert "0.0039" in title and "0.0039" in legend and "0.01" not in legend
+    assert figure_contact_map(result(-np.abs(p))) is None

@@ -124,10 +124,10 @@ def simulation_summary(sim) -> list[str]:
     """Three lines on the simulation of :mod:`roughcontact.topography.simulate`."""
     s, i, inv = sim.surface, sim.interaction, sim.inverse_kappa
     interval = "" if inv.n < 2 else f", 1/kappa in [{inv.low:.3g}, {inv.high:.3g}]"
-    seeds = "; ".join(
-        f"{r.kappa:.3g} ({r.kappa_rep:.3g}, {r.kappa_att:.3g})" if not r.error else "failed"
-        for r in sim.runs
-    )
+    from .notes import predicted_reason, seed_status
+
+    seeds = "; ".join(seed_status(r) for r in sim.runs)
+    why = predicted_reason(sim)
     pull = sim.pull_off_pressure
     how = (
         f"over {inv.n} of {len(sim.runs)} seeds{interval}"
@@ -135,7 +135,8 @@ def simulation_summary(sim) -> list[str]:
         else f"({len(sim.runs)} seeds, none analysed at 1 %: see the notes)"
     )
     return [
-        f"simulated: {sim.verdict} {how}; Eq. 10 on the same surfaces: {sim.predicted_verdict}",
+        f"simulated: {sim.verdict} {how}; Eq. 10 on the same surfaces: {sim.predicted_verdict}"
+        + (f" ({why})" if why else ""),
         f"simulation: {s['size']}^2 sites of a0 = {_length_text(s['atomic_spacing'])}, "
         f"lambda_s = {s['short_cutoff_over_a0']:g} a0, H = {s['hurst']:.2f}, "
         f"h'rms = {s['rms_slope']:.3g}; wall l_a/a0 = {i['adhesion_length_over_a0']:.3g}, "
@@ -315,8 +316,10 @@ FIGURES = {
 
 
 def figure_contact_map(result: StickResult):
-    """Repulsive (orange) and attractive (black) sites of the first simulated seed at
-    A_rep ~ 1 % (Fig. 1's style, :func:`roughcontact.plot.figure1`); None if none kept."""
+    """Repulsive (orange) and attractive (black) sites of the first simulated seed in the
+    approach's state nearest A_rep = 1 % (Fig. 1's style, :func:`roughcontact.plot.figure1`;
+    the panel title and the legend give that state's own A_rep/A0); None if none kept or
+    the state has no repulsive site."""
     from ..plot import figure1
 
     sim = result.simulation
@@ -325,8 +328,12 @@ def figure_contact_map(result: StickResult):
         return None
     seed, pressure = found
     la = sim.interaction["adhesion_length_over_a0"]
-    label = rf"seed {seed}, $\ell_a/a_0 = {la:.3g}$ ({sim.verdict})"
-    return figure1([pressure], labels=[label], target_area=0.01)
+    # the state kept is the approach's nearest to 1 %: title and legend give its own area
+    area = float(np.mean(np.asarray(pressure) > 0))
+    if area == 0:  # e.g. a soft solid jumping into contact: nothing repulsive to show
+        return None
+    label = rf"seed {seed}, $\ell_a/a_0 = {la:.3g}$ ({sim.verdict}; the state nearest 1 %)"
+    return figure1([pressure], labels=[label], target_area=float(f"{area:.2g}"))
 
 
 def write_report(result: StickResult, out_dir, *, formats=("png",), dpi: int = 150) -> dict:
