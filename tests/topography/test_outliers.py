@@ -130,3 +130,23 @@ def test_the_rule_is_stated_with_its_threshold():
     report = find_outliers(h)[1]
     assert report["spikes"] == 1 and report["threshold"] == SPIKE_THRESHOLD
     assert "1.4826 MAD" in report["rule"] and "every axis and diagonal" in report["rule"]
+
+
+def test_islands_in_a_hole_are_judged_by_the_height_distribution():
+    """Pairs of valid pixels inside a missing region: the surface's own heights stay,
+    heights 10 rms away from the interpolation around them go (isolated, not spikes)."""
+    h = _surface(128)
+    hole = np.zeros(h.shape, bool)
+    hole[30:80, 30:90] = True
+    pairs = np.zeros(h.shape, bool)
+    pairs[33:78:4, 33:88:4] = True
+    pairs[33:78:4, 34:89:4] = True  # two pixels side by side: not isolated pixels
+    missing = hole & ~pairs
+    true_heights = np.where(missing, np.nan, h)
+    assert find_outliers(true_heights, missing)[1]["points"] == 0
+    wild = true_heights.copy()
+    rng = np.random.default_rng(2)
+    wild[pairs] = rng.choice([-1, 1], int(pairs.sum())) * rng.uniform(10, 20, int(pairs.sum()))
+    found, report = find_outliers(wild, missing)
+    assert report["isolated"] == int(pairs.sum()) and found[pairs].all()
+    assert report["sentinel_value"] is None and report["spikes"] == 0

@@ -33,10 +33,12 @@ rests on medians:
    height (a measurement does not repeat one number that often; quantised data repeat
    every level alike), held by fewer than half of the valid pixels: every pixel with
    it is an outlier (an instrument's "no data" value or a saturated reading).
-3. **Isolated pixel.** A valid pixel with no valid neighbour along any axis (inside a
-   missing region) cannot be tested by 1: it is an outlier when it deviates from the
-   harmonic interpolation of the valid points around it by more than
-   :data:`SPIKE_THRESHOLD` ``s``.
+3. **Isolated pixel.** A valid pixel in a group of at most :data:`ISLAND_MAX` valid
+   pixels surrounded by missing ones cannot be tested by 1: it is an outlier when it
+   deviates from the harmonic interpolation of the valid points around the group by
+   more than :data:`ISLAND_THRESHOLD` robust standard deviations of the scan's heights
+   (1.4826 MAD about their plane): inside a hole the surface may differ from the
+   interpolation by its roughness, not by six times its rms height.
 
 **What is done.** ``outliers="remove"`` (the default of :func:`roughcontact.stick` and
 the CLI's ``--outliers remove``) treats them as missing points: they are filled with
@@ -60,6 +62,8 @@ __all__ = [
     "OUTLIER_MODES",
     "SENTINEL_MIN_POINTS",
     "SENTINEL_RATIO",
+    "ISLAND_MAX",
+    "ISLAND_THRESHOLD",
     "SPIKE_THRESHOLD",
     "find_outliers",
     "outlier_note",
@@ -73,6 +77,12 @@ SPIKE_THRESHOLD = 12.0
 SENTINEL_MIN_POINTS = 10
 #: A sentinel value is held by this many times as many pixels as any other value.
 SENTINEL_RATIO = 10.0
+#: Largest group of valid pixels inside missing ones tested as isolated (rule 3).
+ISLAND_MAX = 4
+#: Robust standard deviations of the heights by which an island must differ from the
+#: interpolation of its surroundings (rule 3): a surface within its own height
+#: distribution is not; a Gaussian one exceeds 6 sd with a probability of 2e-9.
+ISLAND_THRESHOLD = 6.0
 #: Gaussian: sd = 1.4826 MAD = Q90(|x|)/1.645.
 _MAD_SD, _Q90_SD = 1.4826, 1.0 / 1.6449
 
@@ -127,6 +137,37 @@ def _direction(h, missing, step, periodic):
         second = vals - 0.5 * (near[-1] + near[1])
     direct = np.isfinite(near[-1]) | np.isfinite(near[1])
     return excursion, second, direct
+
+
+def _islands(valid, periodic):
+    """Valid pixels in connected groups (edge neighbours) of at most :data:`ISLAND_MAX`
+    pixels: islands inside missing regions, which the spike test cannot judge."""
+    from scipy import ndimage
+
+    labels, n = ndimage.label(valid)
+    if n == 0:
+        return None
+    sizes = np.bincount(labels.ravel())
+    small = sizes <= ISLAND_MAX
+    small[0] = False  # the missing points' label
+    if periodic:  # a group cut by the edge is one group: leave it to the spike test
+        edge = np.zeros(valid.shape, bool)
+        for axis in range(valid.ndim):
+            idx = [slice(None)] * valid.ndim
+            idx[axis] = [0, -1]
+            edge[tuple(idx)] = True
+        small[np.unique(labels[edge])] = False
+    return small[labels]
+
+
+def _height_scale(h, valid) -> float:
+    """1.4826 MAD of the valid heights about their least-squares plane (a tilt is no
+    roughness): the scale of rule 3."""
+    idx = np.nonzero(valid)
+    cols = [np.ones(idx[0].size)] + [i.astype(float) for i in idx]
+    coef, *_ = np.linalg.lstsq(np.stack(cols, axis=1), h[idx], rcond=None)
+    _, s = _scale(h[idx] - np.stack(cols, axis=1) @ coef)
+    return s
 
 
 def _scale(r):
@@ -208,16 +249,17 @@ def find_outliers(heights, missing=None, *, periodic=False):
         tested |= ok
     spike &= tested & ~work_missing & axes_tested
     # 3. isolated pixels inside missing regions
-    isolated = valid & ~sentinel_mask & ~has_neighbour & work_missing.any()
+    isolated = _islands(valid & ~sentinel_mask, periodic) if work_missing.any() else None
+    isolated = np.zeros(h.shape, bool) if isolated is None else isolated & ~spike
     n_isolated = 0
-    finite_scales = [s for s in scales if s > 0]
-    if isolated.any() and finite_scales and (valid & ~isolated & ~sentinel_mask).sum() >= 2:
+    rest = valid & ~isolated & ~sentinel_mask
+    if isolated.any() and rest.sum() >= 8:
         from ._grid import harmonic_fill
 
-        s = float(np.mean(finite_scales))
+        s_h = _height_scale(h, rest)
         filled = harmonic_fill(np.where(work_missing | isolated, 0.0, h),
                                work_missing | isolated, periodic=periodic)  # fmt: skip
-        off = isolated & (np.abs(h - filled) > SPIKE_THRESHOLD * s)
+        off = isolated & (np.abs(h - filled) > ISLAND_THRESHOLD * s_h)
         n_isolated = int(off.sum())
         flagged |= off
     flagged |= spike | sentinel_mask
@@ -235,8 +277,8 @@ def find_outliers(heights, missing=None, *, periodic=False):
             "x 1.4826 MAD of the second differences, along every axis and diagonal, one "
             "sign; sentinel: one value "
             f"held by >= {SENTINEL_MIN_POINTS} pixels and >= {SENTINEL_RATIO:g}x any other; "
-            "isolated: a valid pixel without valid neighbours, that far from the "
-            "interpolation of its surroundings"
+            f"isolated: a group of <= {ISLAND_MAX} valid pixels inside missing ones, more than "
+            f"{ISLAND_THRESHOLD:g} robust sd of the heights from the interpolation around it"
         ),
     }
     return flagged, report
