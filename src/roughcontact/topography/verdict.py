@@ -312,9 +312,8 @@ def _tip_note(topo, reliability) -> str:
         "a .npy or text file states"
     )
     return (
-        f"{what} no tip or stylus radius: no tip-based reliability cutoff (the smallest "
-        "trusted scale comes from the spectrum: the instrument's limits found in the PSD, "
-        "else the Nyquist wavelength); give --tip-radius (tip_radius=) if you know it"
+        f"{what} no tip or stylus radius: no tip-based reliability cutoff; give "
+        "--tip-radius (tip_radius=) if you know it"
     )
 
 
