@@ -51,3 +51,31 @@ def raises_one_line(call, *words, error=ParameterError):
 def random_surface(seed=1, n=16):
     """An n x n surface of standard-normal heights."""
     return np.random.default_rng(seed).normal(size=(n, n))
+
+
+def assert_numbers_close(actual, expected, *, rel=1e-9, abs=1e-15, where="$"):
+    """Two JSON-like trees agree: the same keys, lengths, strings, booleans, integers and
+    ``None``s, and floats to ``rel`` relative (plus ``abs`` absolute, for values at zero).
+
+    For results computed on another machine (another numpy/scipy, another CPU): their last
+    digits are rounding, not meaning, so an exact comparison fails there (e.g. a fit's
+    minimum that differs in the 16th digit).
+    """
+    import math
+
+    if isinstance(expected, dict):
+        assert isinstance(actual, dict), (where, actual)
+        assert list(actual) == list(expected), (where, sorted(set(actual) ^ set(expected)))
+        for key, value in expected.items():
+            assert_numbers_close(actual[key], value, rel=rel, abs=abs, where=f"{where}.{key}")
+    elif isinstance(expected, list | tuple):
+        assert isinstance(actual, list | tuple) and len(actual) == len(expected), where
+        for i, (a, e) in enumerate(zip(actual, expected, strict=True)):
+            assert_numbers_close(a, e, rel=rel, abs=abs, where=f"{where}[{i}]")
+    elif isinstance(expected, float) and not isinstance(actual, bool):
+        assert isinstance(actual, int | float), (where, actual, expected)
+        assert math.isclose(actual, expected, rel_tol=rel, abs_tol=abs) or (
+            math.isnan(actual) and math.isnan(expected)
+        ), (where, actual, expected)
+    else:  # str, bool, int, None: exact (an int that became a float is a change)
+        assert type(actual) is type(expected) and actual == expected, (where, actual, expected)

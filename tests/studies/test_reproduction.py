@@ -20,6 +20,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from _helpers import assert_numbers_close
 
 ROOT = Path(__file__).resolve().parents[2]
 STUDY = ROOT / "reproduction" / "reproduction.toml"
@@ -92,5 +93,8 @@ def test_report_numbers_follow_from_committed_data(tmp_path):
 
     committed = json.loads((ROOT / "reproduction" / "claims.json").read_text())
     made = write_report(DATA / "collected.nc", tmp_path)
-    assert json.loads((tmp_path / "claims.json").read_text()) == committed
+    # The same data through another numpy/scipy (fits, medians) moves the last digits:
+    # the claims' numbers agree to 1e-9 relative, far below what the report prints (3-4
+    # significant digits); keys, verdicts, counts and texts exactly.
+    assert_numbers_close(json.loads((tmp_path / "claims.json").read_text()), committed)
     assert made["claims"]["eq3_linearity"]["tasks"] == committed["eq3_linearity"]["tasks"]

@@ -19,10 +19,16 @@ from roughcontact import ParameterError
 from roughcontact.solvers.offsets import stepped_values
 from roughcontact.workflows import AreaFields, PathRun, approach_offsets, run_path
 
-#: Relative tolerance of the recorded numbers: the same operations in the same order
-#: reproduce them to the last bit on one machine; another FFT build may move the last
-#: digits, never the twelfth.
-REL = 1e-12
+#: Relative tolerance of the recorded numbers. On the machine that recorded them the same
+#: operations reproduce them to the last bit, but another numpy (its FFT) or CPU rounds
+#: differently, and a solve that stops at a residual of ``tol`` = 1e-8 can then stop an
+#: iteration earlier or later: its state moves by up to ~tol, and the quantities derived
+#: from it (κ from an interpolation between states) by up to ~100 tol. 1e-5 is above that
+#: and far below any change of the physics (the demo prints 3 significant digits).
+REL = 1e-5
+#: Contact areas are site counts over the 64² grid: a site at the edge of contact, within
+#: the solver's tolerance of the wall, may count on one machine and not on another.
+SITES = 2 / 64**2
 
 
 @pytest.fixture(scope="module")
@@ -55,7 +61,7 @@ def test_adhesive_path_gives_the_numbers_recorded_before_run_path(adhesive):
     assert float(ds["gap"].values.sum()) == pytest.approx(6770.285230773369, rel=REL)
     assert float(ds["load"].values[7]) == pytest.approx(-0.0008104970267195474, rel=REL)
     assert float(ds["load"].values.sum()) == pytest.approx(-0.07425731670710031, rel=REL)
-    assert float(ds["repulsive_area"].values.sum()) == 1.52294921875  # site counts
+    assert float(ds["repulsive_area"].values.sum()) == pytest.approx(1.52294921875, abs=SITES)
     assert adhesive.pull_off == pytest.approx(0.003579519761026945, rel=REL)
     recorded = {
         "kappa": -1.1469377326018264,
@@ -81,7 +87,7 @@ def test_load_control_gives_the_numbers_recorded_before_run_path():
     offset = [0.9097956362516869, 0.8529625167948612, 0.7787074881806547, 0.6745957195718532,
               0.5362410034328711]  # fmt: skip
     assert run.control == "load" and run.analysis is None and not run.area_fields
-    np.testing.assert_array_equal(run.path["repulsive_area"].values, area)
+    np.testing.assert_allclose(run.path["repulsive_area"].values, area, rtol=0, atol=SITES)
     np.testing.assert_allclose(run.path["offset"].values, offset, rtol=REL, atol=0)
     np.testing.assert_array_equal(run.values, loads)
 
