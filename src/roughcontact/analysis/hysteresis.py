@@ -50,6 +50,7 @@ from .._validate import ParameterError, json_ready, positive
 
 __all__ = [
     "JKR_CYCLE_COEFFICIENT",
+    "RELATIVE_TOLERANCE",
     "Hysteresis",
     "hysteresis",
     "hysteresis_from_steps",
@@ -57,6 +58,9 @@ __all__ = [
     "jkr_cycle_dissipation",
 ]
 
+#: Without the solver's tolerance: the numerical bound of a cycle's W as a fraction of
+#: the path's work scale ∫|N| |dd| (float64 sums of converged loads stay far below it).
+RELATIVE_TOLERANCE = 1e-6
 #: ``1/10 + (3/5) 2^(2/3)``: W_JKR in units of ``pi^(5/3) w^(5/3) R^(4/3)/E*^(2/3)``.
 JKR_CYCLE_COEFFICIENT = 0.1 + 0.6 * 2.0 ** (2.0 / 3.0)
 
@@ -107,8 +111,8 @@ class Hysteresis:
         numerical (the solver's tolerance); also a slightly negative W within
         ``energy_uncertainty``. ``energy_uncertainty`` is then the bound it lies within.
     tolerance : float
-        The solver's part of the bound: ``solver_tolerance × Σ|Δd|`` (NaN when the
-        solver's tolerance is not known).
+        The numerical bound of W: ``solver_tolerance × Σ|Δd|``, or without the solver's
+        tolerance :data:`RELATIVE_TOLERANCE` × ``∫|N| |dd|``.
     """
 
     dissipated_energy: float
@@ -174,9 +178,12 @@ def hysteresis_from_steps(
         cycle's W is ``solver_tolerance × Σ|Δd|``.
 
     A cycle without jumps (``jump`` given, none flagged) that returns to its first offset
-    dissipates nothing: W is reported as 0 (``zero_within_tolerance``) with the bound
-    ``max(solver bound, |raw W|)``; a negative W within the trapezoid's bound is 0 too.
-    W is never reported negative otherwise without a warning.
+    dissipates nothing: a W within the numerical bound (``solver_tolerance × Σ|Δd|``, or
+    without it :data:`RELATIVE_TOLERANCE` × ``∫|N| |dd|``) is reported as 0
+    (``zero_within_tolerance``, ``energy_uncertainty`` the bound); beyond it W is kept with
+    a warning (an unflagged instability?). A negative W within the trapezoid's and the
+    numerical bound is 0 too; beyond them it is 0 within ``|raw W|`` with a warning:
+    W is never negative.
     """
     d = np.asarray(offset, dtype=float).ravel()
     n = np.asarray(load, dtype=float).ravel()
@@ -212,24 +219,28 @@ def hysteresis_from_steps(
     jumps = ja + jr
     raw, zero = W, False
     path_length = float(np.sum(dd))
-    solver = math.nan if solver_tolerance is None else float(solver_tolerance) * path_length
-    bound = 0.0 if not math.isfinite(solver) else solver
+    if solver_tolerance is not None:  # the solver's tolerance on N/A0 along the path
+        solver = float(solver_tolerance) * path_length
+    else:  # unknown: a relative tolerance of the path's own work scale, ∫|N| |dd|
+        solver = RELATIVE_TOLERANCE * float(np.sum(0.5 * (np.abs(n[1:]) + np.abs(n[:-1])) * dd))
     if jump is not None and jumps == 0 and np.isclose(d[-1], d[0]):
-        zero, W = True, 0.0
-        err = max(bound, abs(raw))
-        if math.isfinite(solver) and abs(raw) > solver:
+        if abs(raw) <= solver:  # one stable branch: nothing dissipated, up to the solver
+            zero, W, err = True, 0.0, solver
+        else:
             warnings.append(
-                f"a cycle without jumps gave W = {raw:.3g}, beyond the solver's bound "
-                f"{solver:.3g}: reported as 0 within {err:.3g} (unconverged steps?)"
+                f"a cycle without flagged jumps gives W = {raw:.3g}, beyond its numerical "
+                f"bound {solver:.3g}: an instability smaller than the jump detector's "
+                "threshold, or unconverged steps"
             )
-    elif W < 0 and abs(W) <= err + bound:
-        zero, W = True, 0.0
-        err = max(err + bound, abs(raw))
-    elif W < 0:
+    if W < 0 and abs(W) <= err + solver:  # never negative within the bounds
+        zero, W, err = True, 0.0, err + solver
+    elif W < 0:  # never negative: 0, with the deficit as its uncertainty, and why
         warnings.append(
-            f"W = {W:.3g} is negative beyond its bound {err + bound:.3g}: a cycle cannot "
-            "produce energy; the steps are too coarse or did not converge"
+            f"W = {W:.3g} is negative beyond its bound {err + solver:.3g}: a cycle cannot "
+            "produce energy; reported as 0 within that deficit (the steps are too coarse "
+            "or did not converge)"
         )
+        W, err = 0.0, max(err + solver, abs(raw))
     si = math.nan
     if length_scale is not None and pressure_scale is not None:
         si = W * positive("length_scale", length_scale) * positive("pressure_scale", pressure_scale)

@@ -126,6 +126,10 @@ def simulation_hysteresis(simulation, *, atomic_spacing, contact_modulus, scan_a
             f"{TOL:g} E* per site, times the path's length in offset, or the trapezoid's "
             "residual if larger); never negative"
         )
+    for s in seeds:  # what the rule could not settle, per seed
+        for w in s["warnings"]:
+            if "without flagged jumps" in w or "negative beyond" in w:
+                notes.append(f"seed {s['seed']}: {w}")
     open_cycles = sum(not s["closed"] for s in seeds)
     if open_cycles:
         notes.append(
