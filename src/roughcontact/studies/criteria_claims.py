@@ -398,7 +398,9 @@ def report_lines(c) -> list[str]:
             "",
             "*Not in the paper.* W = −∮N dd per A0 (units of E* a0) over each task's collected "
             "steps; the bound sums |ΔN||Δd|/2 over the steps flagged as jumps (the steps do not "
-            f"resolve where a jump happens). {hy['tasks']} tasks; median [16th, 84th "
+            "resolve where a jump happens). A cycle without jumps dissipates nothing: its W is "
+            "0 within the bound 1e-6 of the path's ∫|N| |dd| (the bound column then holds it; "
+            f"roughcontact.analysis.hysteresis). {hy['tasks']} tasks; median [16th, 84th "
             "percentile] over tasks:",
             "",
             "| ℓa/a0 | W/(E* a0) | bound | jumps | W per jump | cycles not closed |",
@@ -438,8 +440,8 @@ def _set_lines(hy) -> list[str]:
     )
     L = [
         f"Per parameter set ({len(sets)}; mean ± sample standard deviation over its seeds, "
-        f"computed from {source}). W in units of E* a0 per A0; |W| of order 1e-12 is the "
-        "trapezoid's round-off of a cycle without jumps (no dissipation):",
+        f"computed from {source}). W in units of E* a0 per A0; a cycle without jumps "
+        "counts 0 (no dissipation; its trapezoid's round-off is of order 1e-12):",
         "",
         "| H | h′rms | λs/a0 | ℓa/a0 | seeds | W/(E* a0) | jumps | W per jump | not closed |",
         "|---|---|---|---|---|---|---|---|---|",
