@@ -203,6 +203,6 @@ def test_muser_states_its_definition_and_both_radii():
     r = evaluate("muser", lattice())
     assert not any("unverified" in n for n in r.notes) and "unverified" not in r.verdict
     assert any("Adhesion package" in n and "R = 1/h''rms" in n for n in r.notes)
-    assert "R_c = 2/h''rms" in r.verdict and "64, 15 (2016)" in r.reference
+    assert "R_c = 2/h''rms" in r.verdict and "Tribol. Lett. (2016)" in r.reference
     text = format_table(criteria_table(lattice()))
     assert "unverified" not in text and "Not evaluated: the bearing-area (BAM)" in text

@@ -1,7 +1,7 @@
 r"""Müser's generalised Tabor parameter: which adhesion regime, not whether it sticks.
 
 M. H. Müser, "A dimensionless measure for adhesion and effects of the range of adhesion
-in contacts of nominally flat surfaces", Tribol. Lett. 64, 15 (2016): Tabor's parameter
+in contacts of nominally flat surfaces", Tribol. Lett. (2016): Tabor's parameter
 with the radius of curvature of the rough surface's asperities,
 
 .. math::
@@ -42,7 +42,7 @@ UNVERIFIED = DEFINITION
 DESCRIPTOR = Criterion(
     key=KEY,
     name="Müser (generalised Tabor)",
-    reference="M. H. Müser, Tribol. Lett. 64, 15 (2016), generalised Tabor parameter",
+    reference="M. H. Müser, Tribol. Lett. (2016), generalised Tabor parameter",
     formula="μT = R^(1/3) ℓa^(2/3)/Δr = (R w²/(E*² Δr³))^(1/3), R = 1/h''rms; μT > 1 JKR-like",
     parameter_symbol="μT",
     threshold=1.0,

@@ -3,7 +3,7 @@ r"""Model checks the field uses beside the verdict of :func:`roughcontact.stick`
 **Monti, Sanner & Pastewka (2021).** Pastewka & Robbins' theory assumes adhesion of
 short range against the gaps of the rough contact. J. M. Monti, A. Sanner and
 L. Pastewka ("Distribution of gaps and adhesive interaction between contacting rough
-surfaces", Tribol. Lett. 69, 80 (2021), doi:10.1007/s11249-021-01454-6) measure the gap
+surfaces", Tribol. Lett. (2021), doi:10.1007/s11249-021-01454-6) measure the gap
 on the scale of the contacts by
 
 .. math::
@@ -25,8 +25,8 @@ __all__ = ["MSP_MAX", "msp_gap", "model_checks"]
 #: Largest rho/g0 for which the short-range assumption holds (Monti et al. 2021).
 MSP_MAX = 0.1
 _REFERENCE = (
-    "J. M. Monti, A. Sanner and L. Pastewka, Tribol. Lett. 69, 80 (2021): rho/g0 < 0.1, "
-    "g0 = 16/3 h'rms^2/h''rms"
+    "J. M. Monti, A. Sanner and L. Pastewka, Tribol. Lett. (2021), "
+    "doi:10.1007/s11249-021-01454-6: rho/g0 < 0.1, g0 = 16/3 h'rms^2/h''rms"
 )
 
 
