@@ -234,8 +234,10 @@ def test_every_real_file_ends_in_a_verdict_that_states_its_grounds(name):
             assert "no extrapolated verdict because" in text and d["extrapolated"] is None
         else:
             assert 0 < d["hurst"] < 1  # never a confident extrapolation from H outside (0, 1)
-        if material is PDMS:
-            assert d["sticky"] is True
+        if material is PDMS and d["scope"] == "measured scale":  # a scoped answer only
+            assert d["sticky"] is None and d["sticky_measured_scale"] is True
+        elif material is PDMS:
+            assert d["sticky"] is True and d["sticky_measured_scale"] is True
         elif name != "metropro-1.dat":  # the optical flat: depends on unmeasured roughness
             assert d["sticky"] is False
         else:
@@ -248,9 +250,11 @@ def test_the_stylus_profile_is_not_self_affine_above_its_resolution():
     r = _run([_real("dektak-1.csv"), *PDMS])
     assert r.exit_code == 0, r.output
     lines = r.output.splitlines()
-    assert lines[0] == "verdict: sticky at the measured scale (roughness down to 3.86 um); " + (
-        "no extrapolated verdict"
+    assert lines[0] == (
+        "verdict: no verdict for the whole surface: sticky at the measured scale (roughness "
+        "down to 3.86 um) only; no extrapolated verdict"
     )
+    assert "(sticky_measured_scale): sticky" in r.output
     assert lines[1].startswith("no extrapolated verdict because the spectrum")
     assert "outside (0, 1)" in lines[1] and "--fit-range" in lines[1]
     fixed = _run([_real("dektak-1.csv"), *PDMS, "--fit-range", "4um", "20um", "--json"])

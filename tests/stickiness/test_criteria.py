@@ -99,9 +99,12 @@ def test_dahlquist_needs_si():
 
 
 def test_muser_generalised_tabor_by_hand():
-    # Rc = 2/h'' = 40, mu = (Rc w^2/(E*^2 dr^3))^(1/3) = (40 * 0.0025)^(1/3)
+    # R = 1/h'' = 20 (the Adhesion package's example), mu = R^(1/3) l_a^(2/3)/dr with
+    # l_a = w/E*; with Pastewka & Robbins' R_c = 2/h'' = 40 beside it
     r = evaluate("muser", lattice())
-    assert r.parameter == pytest.approx((40 * 0.05**2) ** (1 / 3), rel=1e-12)
+    assert r.parameter == pytest.approx((20 * 0.05**2) ** (1 / 3), rel=1e-12)
+    assert r.values["mu_T_rc"] == pytest.approx((40 * 0.05**2) ** (1 / 3), rel=1e-12)
+    assert r.values["asperity_radius"] == pytest.approx(20, rel=1e-12)
     assert r.sticky is None and "DMT-like" in r.verdict
 
 
@@ -194,8 +197,12 @@ def test_each_result_is_its_descriptor_plus_numbers():
         DESCRIPTORS["muser"].threshold = 2.0
 
 
-def test_muser_says_its_definition_is_unverified():
+def test_muser_states_its_definition_and_both_radii():
+    """Issue 41: no "definition unverified"; R = 1/h''rms with its source, and the
+    R_c = 2/h''rms value beside it."""
     r = evaluate("muser", lattice())
-    assert any("unverified" in n for n in r.notes) and "unverified" in r.verdict
+    assert not any("unverified" in n for n in r.notes) and "unverified" not in r.verdict
+    assert any("Adhesion package" in n and "R = 1/h''rms" in n for n in r.notes)
+    assert "R_c = 2/h''rms" in r.verdict and "Tribol. Lett. (2016)" in r.reference
     text = format_table(criteria_table(lattice()))
-    assert "unverified" in text and "Not evaluated: the bearing-area (BAM)" in text
+    assert "unverified" not in text and "Not evaluated: the bearing-area (BAM)" in text

@@ -144,12 +144,17 @@ def test_spectrum_that_is_not_self_affine_gives_no_extrapolated_verdict(case):
                                     contact_modulus=r.inputs["contact_modulus"],
                                     work_of_adhesion=0.05, interaction_range="0.5 nm")  # fmt: skip
     assert v.margin == pytest.approx(measured.margin, rel=1e-12)
-    assert v.sticky is measured.sticky and "at the measured scale" in v.text
+    # a scoped answer is not the surface's: sticky is None, the measured one beside it
+    assert v.sticky is None and v.sticky_measured_scale is measured.sticky
+    assert "at the measured scale" in v.text and "no verdict for the whole surface" in v.text
     lines = summary(r)
     assert lines[1].startswith("no extrapolated verdict because")
     assert "--fit-range" in lines[1] and "--reliability-cutoff" in lines[1]
     assert not any(line.startswith("extrapolated down to") for line in lines)
     d = r.to_dict()
+    assert d["sticky"] is None and d["sticky_measured_scale"] is measured.sticky
+    assert d["scope"] == "measured scale"
+    assert "(sticky): undecided" in "\n".join(lines)
     assert d["extrapolated"] is None and d["criterion_atomic"] is None
     assert d["no_extrapolation"] == v.no_extrapolation
 
@@ -160,6 +165,7 @@ def test_necessary_condition_decides_without_an_extrapolation():
     h = NM * np.random.default_rng(3).standard_normal((128, 128))
     r = stick(_topo(h), **SILICON)
     assert r.sticky is False and r.verdict.scope == "all scales (necessary condition)"
+    assert r.sticky_measured_scale is False  # the surface's answer holds for the scale too
     assert "necessary condition" in r.verdict.text
 
 

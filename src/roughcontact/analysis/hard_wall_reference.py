@@ -274,19 +274,46 @@ def reference_fields(ds, heights, substrate, target, at, kappa_rep, d_rep, devic
             "approximate"
         )
     if out["band_fraction"] > BAND_WARNING:
-        k = float(ds.attrs.get("stiffness", math.nan)) * float(ds.attrs["pixel_size"])
-        wall = (
-            f"its site stiffness k = {k / float(ds.attrs['contact_modulus']):.3g} E*/a0 per area"
-            if math.isfinite(k)
-            else "its finite stiffness"
-        )
-        out["warnings"].append(
-            f"kappa_rep = {kappa_rep:.3g} includes a band of width delta = {delta:.3g} "
-            f"around every contact (pi delta/d_rep = {out['band_fraction']:.0%}) where the "
-            f"wall is weakly repulsive; a hard wall on the same surface gives kappa_rep = "
-            f"{ref.kappa_rep:.3g} "
-            f"({ref.kappa_rep_corrected:.3g} with the corrected area). The band comes from "
-            f"the wall model ({wall}, softer than the substrate's on-site stiffness), not "
-            "from adhesion or the grid: a larger grid keeps it, a stiffer wall removes it"
-        )
+        out["warnings"].append(_band_warning(ds, kappa_rep, delta, out["band_fraction"], ref))
     return out
+
+
+def _hard_core(attrs) -> bool:
+    """Whether the path's interaction has a hard core (no soft repulsion to blame)."""
+    name = str(attrs.get("interaction_name", ""))
+    if name in ("dugdale", "hardwall"):
+        return True
+    if name == "exponential":  # hard unless a core stiffness was recorded
+        k = attrs.get("core_stiffness")
+        return k is None or not math.isfinite(float(k))
+    return False
+
+
+def _band_warning(ds, kappa_rep, delta, fraction, ref) -> str:
+    """The kappa_rep band warning, naming the cause that applies to the path's law: a
+    soft wall's finite stiffness, or (a hard core, no soft repulsion) the adhesion."""
+    head = (
+        f"kappa_rep = {kappa_rep:.3g} includes a band of width delta = {delta:.3g} around "
+        f"every contact (pi delta/d_rep = {fraction:.0%}); a hard wall on the same surface "
+        f"without adhesion gives kappa_rep = {ref.kappa_rep:.3g} "
+        f"({ref.kappa_rep_corrected:.3g} with the corrected area). "
+    )
+    if _hard_core(ds.attrs):
+        law = str(ds.attrs.get("interaction_name", "the interaction"))
+        return head + (
+            f"The law ({law}) has a hard core, so no soft repulsion widens the contacts: the "
+            "band comes from the adhesion, whose attraction around each contact deforms "
+            "the surface and changes the repulsive area and load at this target area; "
+            "it is a property of the adhesive contact, not of the wall model or the grid"
+        )
+    k = float(ds.attrs.get("stiffness", math.nan)) * float(ds.attrs["pixel_size"])
+    wall = (
+        f"its site stiffness k = {k / float(ds.attrs['contact_modulus']):.3g} E*/a0 per area"
+        if math.isfinite(k)
+        else "its finite stiffness"
+    )
+    return head + (
+        f"The band is where the wall is weakly repulsive: it comes from the wall model "
+        f"({wall}, softer than the substrate's on-site stiffness), not from adhesion or "
+        "the grid: a larger grid keeps it, a stiffer wall removes it"
+    )

@@ -50,6 +50,7 @@ from .._validate import ParameterError, json_ready, positive
 
 __all__ = [
     "JKR_CYCLE_COEFFICIENT",
+    "RELATIVE_TOLERANCE",
     "Hysteresis",
     "hysteresis",
     "hysteresis_from_steps",
@@ -57,6 +58,9 @@ __all__ = [
     "jkr_cycle_dissipation",
 ]
 
+#: Without the solver's tolerance: the numerical bound of a cycle's W as a fraction of
+#: the path's work scale ∫|N| |dd| (float64 sums of converged loads stay far below it).
+RELATIVE_TOLERANCE = 1e-6
 #: ``1/10 + (3/5) 2^(2/3)``: W_JKR in units of ``pi^(5/3) w^(5/3) R^(4/3)/E*^(2/3)``.
 JKR_CYCLE_COEFFICIENT = 0.1 + 0.6 * 2.0 ** (2.0 / 3.0)
 
@@ -98,6 +102,17 @@ class Hysteresis:
         W in J/m² when the path's length and pressure scales are given, else NaN.
     warnings : tuple of str
         Why the number may not be the cycle's dissipation.
+    raw_dissipated_energy : float
+        The trapezoid's ``-∮ N dd`` before the rule below (same unit).
+    zero_within_tolerance : bool
+        True when ``dissipated_energy`` is reported as 0: a cycle without jumps that
+        returns to its first offset dissipates nothing elastically (its states are on
+        one branch, where the energy is a potential), so what the trapezoid gives is
+        numerical (the solver's tolerance); also a slightly negative W within
+        ``energy_uncertainty``. ``energy_uncertainty`` is then the bound it lies within.
+    tolerance : float
+        The numerical bound of W: ``solver_tolerance × Σ|Δd|``, or without the solver's
+        tolerance :data:`RELATIVE_TOLERANCE` × ``∫|N| |dd|``.
     """
 
     dissipated_energy: float
@@ -111,6 +126,9 @@ class Hysteresis:
     closed: bool
     dissipated_energy_si: float = math.nan
     warnings: tuple = ()
+    raw_dissipated_energy: float = math.nan
+    zero_within_tolerance: bool = False
+    tolerance: float = math.nan
 
     def to_dict(self) -> dict:
         """JSON-ready (non-finite numbers become None)."""
@@ -135,6 +153,7 @@ def hysteresis_from_steps(
     length_scale: float | None = None,
     pressure_scale: float | None = None,
     load_tolerance: float | None = None,
+    solver_tolerance: float | None = None,
 ) -> Hysteresis:
     """:class:`Hysteresis` of one path given as arrays over its steps (in path order).
 
@@ -153,6 +172,18 @@ def hysteresis_from_steps(
     load_tolerance : float, optional
         ``|N/A0|`` below which the end of the retraction counts as separated; default 1e-6
         of the largest ``|N/A0|`` on the path.
+    solver_tolerance : float, optional
+        How far a converged step's N/A0 may be from the exact one [pressure] (the
+        solver's tolerance on the force balance per site): the bound of a jump-free
+        cycle's W is ``solver_tolerance × Σ|Δd|``.
+
+    A cycle without jumps (``jump`` given, none flagged) that returns to its first offset
+    dissipates nothing: a W within the numerical bound (``solver_tolerance × Σ|Δd|``, or
+    without it :data:`RELATIVE_TOLERANCE` × ``∫|N| |dd|``) is reported as 0
+    (``zero_within_tolerance``, ``energy_uncertainty`` the bound); beyond it W is kept with
+    a warning (an unflagged instability?). A negative W within the trapezoid's and the
+    numerical bound is 0 too; beyond them it is 0 within ``|raw W|`` with a warning:
+    W is never negative.
     """
     d = np.asarray(offset, dtype=float).ravel()
     n = np.asarray(load, dtype=float).ravel()
@@ -186,6 +217,30 @@ def hysteresis_from_steps(
             "with zero load): W includes energy still stored"
         )
     jumps = ja + jr
+    raw, zero = W, False
+    path_length = float(np.sum(dd))
+    if solver_tolerance is not None:  # the solver's tolerance on N/A0 along the path
+        solver = float(solver_tolerance) * path_length
+    else:  # unknown: a relative tolerance of the path's own work scale, ∫|N| |dd|
+        solver = RELATIVE_TOLERANCE * float(np.sum(0.5 * (np.abs(n[1:]) + np.abs(n[:-1])) * dd))
+    if jump is not None and jumps == 0 and np.isclose(d[-1], d[0]):
+        if abs(raw) <= solver:  # one stable branch: nothing dissipated, up to the solver
+            zero, W, err = True, 0.0, solver
+        else:
+            warnings.append(
+                f"a cycle without flagged jumps gives W = {raw:.3g}, beyond its numerical "
+                f"bound {solver:.3g}: an instability smaller than the jump detector's "
+                "threshold, or unconverged steps"
+            )
+    if W < 0 and abs(W) <= err + solver:  # never negative within the bounds
+        zero, W, err = True, 0.0, err + solver
+    elif W < 0:  # never negative: 0, with the deficit as its uncertainty, and why
+        warnings.append(
+            f"W = {W:.3g} is negative beyond its bound {err + solver:.3g}: a cycle cannot "
+            "produce energy; reported as 0 within that deficit (the steps are too coarse "
+            "or did not converge)"
+        )
+        W, err = 0.0, max(err + solver, abs(raw))
     si = math.nan
     if length_scale is not None and pressure_scale is not None:
         si = W * positive("length_scale", length_scale) * positive("pressure_scale", pressure_scale)
@@ -196,7 +251,7 @@ def hysteresis_from_steps(
         dissipated_energy=W,
         energy_uncertainty=err,
         approach_work=wa,
-        retract_work=W - wa,
+        retract_work=raw - wa,
         jumps=jumps,
         jumps_in=ja,
         jumps_out=jr,
@@ -204,11 +259,17 @@ def hysteresis_from_steps(
         closed=closed,
         dissipated_energy_si=si,
         warnings=tuple(warnings),
+        raw_dissipated_energy=raw,
+        zero_within_tolerance=zero,
+        tolerance=solver,
     )
 
 
-def hysteresis(ds, *, length_scale=None, pressure_scale=None) -> Hysteresis:
+def hysteresis(ds, *, length_scale=None, pressure_scale=None, solver_tolerance=None):
     """:func:`hysteresis_from_steps` of a path dataset (:func:`roughcontact.approach_retract`).
+
+    ``solver_tolerance``: the bound on a step's N/A0 from the solver's tolerance (see
+    :func:`hysteresis_from_steps`).
 
     ``length_scale``/``pressure_scale``: metres per the path's length unit and pascals per
     its pressure unit (for a scan simulated in lattice units: a0 in m and E* in Pa); the
@@ -223,6 +284,7 @@ def hysteresis(ds, *, length_scale=None, pressure_scale=None) -> Hysteresis:
         get("converged"),
         length_scale=length_scale,
         pressure_scale=pressure_scale,
+        solver_tolerance=solver_tolerance,
     )
 
 

@@ -90,7 +90,9 @@ class PathAnalysis:
     paper's analysis is not meaningful (too few asperities in contact, a jump inside the
     interpolation bracket, a wide repulsive band, ...). ``dissipated_energy`` (per A0,
     pressure × length; NaN without a retraction), ``dissipated_energy_bound``, ``jumps`` and
-    ``energy_per_jump``: the whole cycle's hysteresis, :func:`.hysteresis.hysteresis`.
+    ``energy_per_jump``: the whole cycle's hysteresis, :func:`.hysteresis.hysteresis`;
+    ``cycle_closed`` whether the path is a closed cycle (False: a warning says why and
+    ``dissipated_energy`` is not a cycle's dissipation; None without a retraction).
     """
 
     target_area: float
@@ -146,6 +148,9 @@ class PathAnalysis:
     dissipated_energy_bound: float = math.nan
     jumps: int = 0
     energy_per_jump: float = math.nan
+    #: whether the path is a closed cycle (the retraction returns to the first offset with
+    #: no load); None without a retraction. False: dissipated_energy is no cycle's.
+    cycle_closed: bool | None = None
 
     def to_dict(self) -> dict:
         """JSON-ready: non-finite numbers become None."""
@@ -354,6 +359,9 @@ def analyze_path(
     warnings += reference.pop("warnings")
     sticky = bool(is_sticky(kappa))
     hy = hysteresis(ds)
+    closed = None if not math.isfinite(hy.dissipated_energy) else bool(hy.closed)
+    if closed is False:
+        warnings.append(_open_cycle_warning(ds))
     return PathAnalysis(
         target_area=target,
         offset=at["offset"],
@@ -393,6 +401,23 @@ def analyze_path(
         dissipated_energy_bound=hy.energy_uncertainty,
         jumps=hy.jumps,
         energy_per_jump=hy.energy_per_jump,
+        cycle_closed=closed,
+    )
+
+
+def _open_cycle_warning(ds) -> str:
+    """Why the path is no closed cycle, and what its dissipated_energy then is."""
+    why = []
+    if math.isfinite(float(ds.attrs.get("until_area", math.nan))):
+        until = float(ds.attrs["until_area"])
+        why.append(f"the approach stopped at A_rep/A0 = {until:g} (until_area)")
+    if not math.isfinite(float(ds.attrs.get("pull_off", math.nan))):
+        why.append("the retraction never separated the surfaces")
+    reason = "; ".join(why) or "the retraction does not end where the approach began, unloaded"
+    return (
+        f"the cycle is not closed ({reason}): dissipated_energy is -∮N dd over the path, "
+        "not a closed cycle's dissipation; it includes elastic energy still stored "
+        "(cycle_closed: false)"
     )
 
 

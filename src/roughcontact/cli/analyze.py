@@ -125,12 +125,19 @@ def analyze(
     if as_json:
         click.echo(json.dumps(json_safe(summary), allow_nan=False))
     else:
+        cycle = (
+            "the whole cycle" if summary.get("cycle_closed") is not False
+            else "the path, which is NOT a closed cycle (cycle_closed: False; see the note)"
+        )  # fmt: skip
         click.echo(
             "units: areas per A0, loads N/A0 in units of E*, lengths (d_rep, band_width, "
             "offset) in the path's length unit; kappa = h'rms E* A_rep/N at the target area, "
-            "kappa_fit = the slope of A_rep(N); dissipated_energy = -∮N dd per A0 over the "
-            "whole cycle (load unit × length unit); *_si in J/m^2, *_joules in J over A0"
+            f"kappa_fit = the slope of A_rep(N); dissipated_energy = -∮N dd per A0 over {cycle}"
+            " (load unit × length unit); *_si in J/m^2, *_joules in J over A0"
         )
+        for message in summary["warnings"]:  # on stdout too: the text is the result
+            if message.startswith("the cycle is not closed"):
+                click.echo(f"note: {message}")
         for k, v in summary.items():
             if k != "warnings":
                 click.echo(f"{k:>34}: {v}")

@@ -23,14 +23,16 @@ __all__ = ["stick"]
 
 
 def _pixel_size(text):
-    """``"10 nm"`` or ``"10nm,20nm"`` (one per axis) in metres; None stays None."""
+    """``"10 nm"`` or ``"10nm,20nm"`` (one per axis), checked and passed on as text (a
+    bare number is metres, and the library says so next to the result); None stays None."""
     if text is None:
         return None
     from ..criterion import parse_quantity
 
-    parts = [p for p in str(text).split(",") if p.strip()]
-    sizes = tuple(parse_quantity(p, "length", "--pixel-size") for p in parts)
-    return sizes[0] if len(sizes) == 1 else sizes
+    parts = tuple(p.strip() for p in str(text).split(",") if p.strip())
+    for p in parts:  # one-line errors naming the option; the library reads the text
+        parse_quantity(p, "length", "--pixel-size")
+    return parts[0] if len(parts) == 1 else parts
 
 
 @click.command("stick")
@@ -85,7 +87,8 @@ def _pixel_size(text):
 @click.option(
     "--pixel-size",
     default=None,
-    help="Grid spacing of a .npy/text file, e.g. '2 nm' (or 'X,Y' per axis).",
+    help="Grid spacing of a .npy/text file, e.g. '2 nm' (or 'X,Y' per axis); a bare "
+    "number is metres (said in the output).",
 )
 @click.option(
     "--height-unit", default=None, help="Unit of a .npy/text file's heights (m, nm, ...)."
@@ -96,6 +99,14 @@ def _pixel_size(text):
     default=None,
     help="Fill missing points of any fraction (harmonic interpolation) / refuse any. "
     "Default: fill up to 1 % of the scan, refuse more.",
+)
+@click.option(
+    "--outliers",
+    type=click.Choice(["remove", "keep"]),
+    default="remove",
+    show_default=True,
+    help="Spikes, sentinel values and isolated pixels (a robust rule, counted in a note): "
+    "remove them (filled like missing points) or keep them as heights.",
 )
 @click.option(
     "--fit-range",
@@ -163,8 +174,8 @@ def _pixel_size(text):
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object (SI units).")
 def stick(scan, channel, modulus, work, poisson, counter_modulus, counter_poisson, range_,
           tip_radius, reliability_cutoff, detrend, kappa_rep, atomic_spacing, pixel_size,
-          height_unit, periodic, fill_missing, fit_range, hurst_sigmas, out_dir, formats, dpi,
-          simulate, simulate_size, simulate_seeds, as_json):  # fmt: skip
+          height_unit, periodic, fill_missing, outliers, fit_range, hurst_sigmas, out_dir,
+          formats, dpi, simulate, simulate_size, simulate_seeds, as_json):  # fmt: skip
     """Is the surface in SCAN sticky? (Pastewka & Robbins 2014, Eq. 10.)
 
     SCAN is an instrument file (AFM, interferometer, stylus profilometer; read with
@@ -216,6 +227,7 @@ def stick(scan, channel, modulus, work, poisson, counter_modulus, counter_poisso
         fill_missing=fill_missing,
         counter_modulus=counter_modulus,
         counter_poisson=counter_poisson,
+        outliers=outliers,
     )
     if out_dir is not None:
         from ..htmlreport import command_line

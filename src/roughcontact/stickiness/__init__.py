@@ -15,7 +15,7 @@ threshold, verdict and where it has been validated):
 ``persson_tosatti``    elastic energy of full contact vs w (Persson & Tosatti 2001)
 ``fuller_tabor``       θ = E*σs^(3/2)/(w Rs^(1/2)) over summit statistics (1975)
 ``dahlquist``          E < 0.1 MPa (tapes; SI only)
-``muser``              generalised Tabor parameter: a regime, no verdict (2016)
+``muser``              generalised Tabor parameter, R = 1/h"rms: a regime, no verdict (2016)
 =====================  ============================================================
 
 The *measured* verdict of a simulation (sticky ⇔ 1/κ < 0 at A_rep = 1 % of A0) is

@@ -404,7 +404,7 @@ def report_blocks(c) -> list:
             ),  # fmt: skip
             Para(
                 "Dahlquist's rule needs SI (no scale in lattice units) and Müser's parameter "
-                "(its definition unverified against Müser's paper) classifies the regime "
+                "(R = 1/h''rms, as the Adhesion package evaluates it) classifies the regime "
                 "without a stickiness threshold: neither gives a verdict here. The Fuller–Tabor "
                 "threshold θ = 10 is a convention. No bearing-area criterion (Ciavarella's BAM, "
                 "Violano et al.) is evaluated: its equations could not be checked against the "
@@ -427,8 +427,10 @@ def report_blocks(c) -> list:
             Para(
                 "*Not in the paper.* W = −∮N dd per A0 (units of E* a0) over each task's "
                 "collected steps; the bound sums |ΔN||Δd|/2 over the steps flagged as jumps (the "
-                f"steps do not resolve where a jump happens). {hy['tasks']} tasks; median "
-                "[16th, 84th percentile] over tasks:"
+                "steps do not resolve where a jump happens). A cycle without jumps dissipates "
+                "nothing: its W is 0 within the bound 1e-6 of the path's ∫|N| |dd| (the bound "
+                "column then holds it; roughcontact.analysis.hysteresis). "
+                f"{hy['tasks']} tasks; median [16th, 84th percentile] over tasks:"
             ),
             Table(
                 ("ℓa/a0", "W/(E* a0)", "bound", "jumps", "W per jump", "cycles not closed"),
@@ -463,8 +465,8 @@ def _set_blocks(hy) -> list:
     return [
         Para(
             f"Per parameter set ({len(sets)}; mean ± sample standard deviation over its seeds, "
-            f"computed from {source}). W in units of E* a0 per A0; |W| of order 1e-12 is the "
-            "trapezoid's round-off of a cycle without jumps (no dissipation):"
+            f"computed from {source}). W in units of E* a0 per A0; a cycle without jumps "
+            "counts 0 (no dissipation; its trapezoid's round-off is of order 1e-12):"
         ),
         Table(
             (

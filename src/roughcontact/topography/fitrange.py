@@ -49,6 +49,7 @@ __all__ = [
     "MAX_HURST_STDERR",
     "NOISE_GAIN",
     "SIGNAL_TO_NOISE",
+    "clamp_fit_range",
     "good_range",
     "self_affine_problem",
 ]
@@ -201,6 +202,66 @@ def good_range(spectrum, short: float, long: float) -> GoodRange:
     usable = bool(cut * 2 <= long * (1 + 1e-9) and kept.sum() >= MIN_BINS)
     return GoodRange(float(cut), float(long), resolution, noise_floor, noise_level, usable,
                      tuple(reasons))  # fmt: skip
+
+
+def clamp_fit_range(fit_range, pixel_size, shape):
+    """A user's Hurst-fit range clamped to the wavelengths the scan holds.
+
+    The scan's PSD holds wavelengths from the Nyquist wavelength (2 pixels) to the scan
+    size; a range reaching beyond is cut to them (a fit cannot use what is not there,
+    and the range it reports must be the one it used).
+
+    Parameters
+    ----------
+    fit_range : (float, float) or None
+        (shortest, longest) wavelength [m].
+    pixel_size : tuple of float
+        Grid spacing per axis [m].
+    shape : tuple of int
+        Grid points per axis.
+
+    Returns
+    -------
+    (tuple or None, str)
+        The range to fit and a note (``""`` when nothing was cut).
+
+    Raises
+    ------
+    ParameterError
+        When less than an octave of the range lies within the data (one line naming
+        ``fit_range`` and the scan's range).
+    """
+    from ..errors import ParameterError
+
+    if fit_range is None:
+        return None, ""
+    lo, hi = (float(x) for x in fit_range)
+    if not (math.isfinite(lo) and math.isfinite(hi) and 0 < lo < hi):
+        raise ParameterError(
+            f"fit_range must be (shortest, longest) wavelength with 0 < shortest < longest, "
+            f"got {fit_range!r}"
+        )
+    shortest = 2 * max(pixel_size)
+    longest = min(n * a for n, a in zip(shape, pixel_size, strict=True))
+    new_lo, new_hi = max(lo, shortest), min(hi, longest)
+    span = f"{_length(shortest)} (Nyquist, 2 pixels) to {_length(longest)} (the scan size)"
+    if not 2 * new_lo <= new_hi * (1 + 1e-9):
+        raise ParameterError(
+            f"fit_range (--fit-range) {_length(lo)} to {_length(hi)} leaves less than an "
+            f"octave within the scan's wavelengths, {span}; accepted: a range within them"
+        )
+    if (new_lo, new_hi) == (lo, hi):
+        return (lo, hi), ""
+    cut = []
+    if new_lo > lo:
+        cut.append(f"{_length(lo)} raised to {_length(new_lo)} (Nyquist, 2 pixels)")
+    if new_hi < hi:
+        cut.append(f"{_length(hi)} lowered to {_length(new_hi)} (the scan size)")
+    note = (
+        f"--fit-range (fit_range) {_length(lo)} to {_length(hi)} reaches beyond the data and "
+        f"was clamped to it: {'; '.join(cut)}; the scan holds wavelengths {span} only"
+    )
+    return (new_lo, new_hi), note
 
 
 def self_affine_problem(fit) -> str:

@@ -34,9 +34,12 @@ def _seed(run, a0, modulus) -> dict | None:
     ds = run.path
     if ds is None or "branch" not in ds.variables:
         return None
-    hy = hysteresis(ds)
+    from .simulate import TOL
+
+    hy = hysteresis(ds, solver_tolerance=TOL)  # loads per A0 in E*: the solver's tolerance
     si = hysteresis_in_si(hy, length_scale=a0, pressure_scale=modulus,
                           nominal_area=float(ds.attrs["nominal_area"]))  # fmt: skip
+    scale = a0 * modulus  # E* a0 per A0 -> J/m^2
     return {
         "seed": run.seed,
         "dissipated_energy": hy.dissipated_energy,
@@ -49,6 +52,9 @@ def _seed(run, a0, modulus) -> dict | None:
         "patch_area": si["nominal_area"],
         "closed": hy.closed,
         "warnings": list(hy.warnings),
+        "zero_within_tolerance": hy.zero_within_tolerance,
+        "raw_dissipated_energy_si": hy.raw_dissipated_energy * scale,
+        "tolerance_si": hy.tolerance * scale,
     }
 
 
@@ -72,13 +78,17 @@ def simulation_hysteresis(simulation, *, atomic_spacing, contact_modulus, scan_a
         ``seeds`` (per seed: ``dissipated_energy`` [E* a0 per A0],
         ``dissipated_energy_si`` and ``energy_uncertainty_si`` [J/m²], ``jumps``,
         ``jumps_in``, ``jumps_out``, ``energy_per_jump_joules`` [J over the simulated
-        patch ``patch_area`` m²], ``closed``, ``warnings``); over the seeds with a
+        patch ``patch_area`` m²], ``closed``, ``warnings``, ``zero_within_tolerance``
+        (a jump-free cycle: W = 0 within ``energy_uncertainty_si``),
+        ``raw_dissipated_energy_si`` and ``tolerance_si`` [J/m²]); over the seeds with a
         retraction ``dissipated_energy_si`` (mean) and ``dissipated_energy_si_std``
         [J/m²] (sample standard deviation, NaN with one seed), ``jumps_mean``;
         ``scan_area`` [m²] and ``dissipated_energy_scan`` [J] (mean × scan area, NaN
         without an area); ``notes`` (what the numbers rest on). None when no seed has a
         path.
     """
+    from .simulate import TOL
+
     a0, E = float(atomic_spacing), float(contact_modulus)
     seeds = [s for s in (_seed(r, a0, E) for r in simulation.runs) if s is not None]
     if not seeds:
@@ -107,6 +117,19 @@ def simulation_hysteresis(simulation, *, atomic_spacing, contact_modulus, scan_a
         notes.append("no scanned area (a line scan): no energy over the scan")
     if not w.size:
         notes.append("no seed's path has a retraction: no dissipated energy")
+    zeros = [s for s in seeds if s["zero_within_tolerance"]]
+    if zeros:
+        notes.append(
+            f"{len(zeros)} of {len(seeds)} cycles have no jumps (or a W below zero within its "
+            "bound): a cycle on one stable branch dissipates nothing, so W is reported as 0 "
+            "within its bound (energy_uncertainty_si: the solver's tolerance on the load, "
+            f"{TOL:g} E* per site, times the path's length in offset, or the trapezoid's "
+            "residual if larger); never negative"
+        )
+    for s in seeds:  # what the rule could not settle, per seed
+        for w in s["warnings"]:
+            if "without flagged jumps" in w or "negative beyond" in w:
+                notes.append(f"seed {s['seed']}: {w}")
     open_cycles = sum(not s["closed"] for s in seeds)
     if open_cycles:
         notes.append(

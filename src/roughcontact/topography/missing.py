@@ -35,7 +35,30 @@ def _option_text() -> str:
     return "--fill-missing (Python: fill_missing=True)"
 
 
-def missing_policy(name, data, fill_missing, periodic, info):
+def slope_change(values, missing, filled) -> float:
+    """How filling changed the rms slope: ``rms(filled) / rms(measured) - 1``.
+
+    The slope is the difference of neighbouring pixels along every axis, less its mean
+    (the tilt); "measured" takes only the pairs of two measured points, "filled" every
+    pair of the filled scan. Negative: the filled area is smoother than the scan (the
+    usual case of harmonic filling); positive: it is rougher (e.g. isolated pixels
+    pinned inside a filled region). NaN when no pair is measured.
+    """
+    ms_measured = ms_filled = 0.0
+    for axis in range(values.ndim):
+        d_all = np.diff(filled, axis=axis)
+        pair = ~(np.delete(missing, 0, axis=axis) | np.delete(missing, -1, axis=axis))
+        d = np.diff(values, axis=axis)[pair]
+        if d.size < 2:
+            return float("nan")
+        ms_measured += float(np.var(d))
+        ms_filled += float(np.var(d_all))
+    if not ms_measured > 0:
+        return float("nan")
+    return float(np.sqrt(ms_filled / ms_measured) - 1.0)
+
+
+def missing_policy(name, data, fill_missing, periodic, info, *, outliers: int = 0):
     """Fill or refuse the missing points (NaN or masked) of ``data``.
 
     Parameters
@@ -51,7 +74,11 @@ def missing_policy(name, data, fill_missing, periodic, info):
         Whether the data wrap around (the filling's neighbours do too).
     info : dict
         Metadata; a copy gets ``missing_data`` (``points``, ``fraction``, ``filled``,
-        ``asked``).
+        ``asked``, ``outliers``: how many of the points are outliers removed by
+        :mod:`~roughcontact.topography.outliers`, ``slope_change``: the measured effect
+        of the filling on the rms slope, :func:`slope_change`).
+    outliers : int
+        How many of the missing points are outliers removed (for the messages).
 
     Returns
     -------
@@ -71,19 +98,23 @@ def missing_policy(name, data, fill_missing, periodic, info):
     fraction = count / missing.size
     if count == missing.size:
         raise ParameterError(f"{name}: every point is missing; no heights to read")
+    of_them = (
+        f", {outliers} of them outliers removed (--outliers keep keeps them)" if outliers else ""
+    )
     if fill_missing is None and fraction > MISSING_FILL_MAX:
         raise ParameterError(
             f"{name}: {fraction:.1%} of the points ({count} of {missing.size}) are missing "
-            "(NaN or masked by the instrument), more than the "
+            f"(NaN or masked by the instrument{of_them}), more than the "
             f"{MISSING_FILL_MAX:.0%} filled by default; {_option_text()} fills them by "
             "harmonic interpolation, which removes the roughness of the filled area"
         )
     if fill_missing is not None and not fill_missing:
         raise ParameterError(
             f"{name}: {count} of {missing.size} points ({fraction:.3%}) are missing (NaN or "
-            f"masked by the instrument) and fill_missing=False; {_option_text()} fills "
+            f"masked by the instrument{of_them}) and fill_missing=False; {_option_text()} fills "
             "them by harmonic interpolation"
         )
+    measured = values
     values = harmonic_fill(values, missing, periodic=periodic)
     info = dict(info)
     info["missing_data"] = {
@@ -91,6 +122,8 @@ def missing_policy(name, data, fill_missing, periodic, info):
         "fraction": fraction,
         "filled": "harmonic",
         "asked": bool(fill_missing),
+        "outliers": int(outliers),
+        "slope_change": slope_change(measured, missing, values),
     }
     return values, info
 
@@ -107,9 +140,17 @@ def fill_note(missing: dict, total: int | None = None) -> str:
         else str(how)
     )
     line = f"filled {count}{of} missing points ({f:.3%} of the scan) by {how}"
-    if f > MISSING_FILL_MAX:
+    if missing.get("outliers"):
+        line += f" ({int(missing['outliers'])} of them outliers removed)"
+    change = missing.get("slope_change")
+    large = f > MISSING_FILL_MAX
+    if change is not None and np.isfinite(change) and (large or abs(change) >= 0.01):
+        more = "higher" if change > 0 else "lower"
+        why = "" if change > 0 else " (the filled area has no roughness of its own)"
         line += (
-            f"; {f:.1%} is more than the {MISSING_FILL_MAX:.0%} filled by default: slope and "
-            f"curvature may be low by about {f:.0%} (the filled area has no roughness)"
+            f"; the filled scan's rms slope (pixel differences) is {abs(change):.1%} {more} "
+            f"than that of the measured points alone{why}"
         )
+    if large:
+        line += f"; {f:.1%} is more than the {MISSING_FILL_MAX:.0%} filled by default"
     return line

@@ -27,7 +27,16 @@ from ..theory.pastewka_robbins import KAPPA_REP
 from ._text import length_text, range_text
 from .missing import fill_note
 
-__all__ = ["PAPER_WALL_KAPPA_REP", "kappa_rep_check", "notes_for", "simulation_notes"]
+__all__ = [
+    "PAPER_WALL_KAPPA_REP",
+    "channel_note",
+    "kappa_rep_check",
+    "notes_for",
+    "predicted_reason",
+    "seed_failure",
+    "seed_status",
+    "simulation_notes",
+]
 
 #: kappa_rep of the paper's smoothed 9-3 wall, measured with the paper's definition at
 #: A_rep = 1 % (module docstring).
@@ -91,6 +100,23 @@ def notes_for(topo, stats, v, good, moduli, check) -> list:
     m = v.measured
     lam_c, fit = stats.measured_scale, stats.fit
     notes = []
+    warning = topo.info.get("units_warning") if hasattr(topo, "info") else None
+    if warning:
+        notes.append(warning)
+    channel = channel_note(topo)
+    if channel:
+        notes.append(channel)
+    found = topo.info.get("outliers") if hasattr(topo, "info") else None
+    if found:
+        from .outliers import outlier_note
+
+        if found.get("points"):
+            notes.append(outlier_note(found, int(np.prod(topo.shape)), found.get("unit", "m")))
+        else:
+            notes.append(
+                "outliers: none found (spikes, sentinel values, isolated pixels; the rule of "
+                "roughcontact.topography.outliers)"
+            )
     missing = topo.info.get("missing_data") if hasattr(topo, "info") else None
     if missing:
         notes.append(fill_note(missing, int(np.prod(topo.shape))))
@@ -149,6 +175,25 @@ def notes_for(topo, stats, v, good, moduli, check) -> list:
     return notes
 
 
+def channel_note(topo) -> str:
+    """Which data channel of the file was read, and the others (``""`` for a record
+    without channels: a Topography built in Python)."""
+    info = getattr(topo, "info", {}) or {}
+    channels = info.get("channels")
+    name = getattr(topo, "channel", "")
+    if not channels:
+        return ""
+    index = info.get("channel_index", 0)
+    if len(channels) == 1:
+        return f"data channel: {name!r} (the file's only channel)"
+    others = ", ".join(f"{i} {c!r}" for i, c in enumerate(channels) if i != index)
+    return (
+        f"data channel read: {name!r} (index {index} of {len(channels)}); the file's other "
+        f"channels: {others}; --channel NAME or INDEX (channel=) reads another, whose h'rms "
+        "may differ"
+    )
+
+
 def _kappa_line(v, check) -> str:
     other = check["verdict"]
     k_given, k_other = v.measured.kappa_rep, check["kappa_rep"]
@@ -195,5 +240,78 @@ def simulation_notes(surface, runs, law, a0, hurst_min, short_cutoff) -> list:
         )
     for r in runs:
         if r.error:
-            notes.append(f"simulation seed {r.seed}: no result ({r.error})")
+            what, advice = seed_failure(r)
+            notes.append(
+                f"simulation seed {r.seed}: no result (no kappa at A_rep = 1 %): {what}; "
+                f"{advice}"
+            )
     return notes
+
+
+def seed_failure(run) -> tuple[str, str]:
+    """``(what happened, what a stick user can do)`` for a seed without an analysis.
+
+    The analysis' own advice names ``roughcontact path`` options a ``stick`` user has no
+    access to; it is replaced by what ``stick`` offers (``--simulate-size``,
+    ``--simulate-seeds``) or by why nothing needs doing.
+    """
+    error = str(run.error)
+    cut = error.find("; extrapolating its last two steps")
+    error = error[:cut] if cut >= 0 else error
+    ds = run.path
+    jumped = False
+    if ds is not None and "attractive_area" in getattr(ds, "variables", {}):
+        att = np.asarray(ds["attractive_area"].values, dtype=float)
+        jumped = bool(att.size and np.nanmax(att) >= 0.5)
+    if error.startswith("target area") and jumped:
+        return (
+            "the surfaces jumped into contact over most of the area before the repulsive "
+            "area reached 1 %, so kappa there is not defined",
+            "nothing to change: this is the soft-solid limit, and the verdict rests on the "
+            "jump and the pull-off force",
+        )
+    if error.startswith("target area"):
+        return (
+            f"the approach ended short of 1 % repulsive area ({error})",
+            "try a different --simulate-size (the synthetic window) or more --simulate-seeds",
+        )
+    if error.startswith("not converged"):
+        return (
+            f"the steps around 1 % did not converge within the solver's iteration cap "
+            f"({error[:160]})",
+            "try a smaller --simulate-size or more --simulate-seeds (the other seeds carry "
+            "the verdict)",
+        )
+    return (error or "no analysis", "try more --simulate-seeds or a different --simulate-size")
+
+
+def seed_status(run) -> str:
+    """A few words for a seed's column of the text output."""
+    if not run.error:
+        return f"{run.kappa:.3g} ({run.kappa_rep:.3g}, {run.kappa_att:.3g})"
+    what = seed_failure(run)[0]
+    if what.startswith("the surfaces jumped into contact"):
+        return f"seed {run.seed}: jumped into contact, no kappa"
+    if what.startswith("the approach ended short"):
+        return f"seed {run.seed}: 1 % not reached"
+    if what.startswith("the steps around 1 %"):
+        return f"seed {run.seed}: not converged"
+    return f"seed {run.seed}: no result"
+
+
+def predicted_reason(sim) -> str:
+    """Why Eq. 10 on the simulated surfaces is undecided (``""`` when it is decided)."""
+    pred = sim.predicted_inverse_kappa
+    if sim.predicted_verdict != "undecided":
+        return ""
+    if pred.n == 0:
+        return (
+            "no seed was analysed at A_rep = 1 %, where Eq. 10 is evaluated with each "
+            "seed's measured kappa_rep and d_rep"
+        )
+    if pred.n < 2:
+        return f"one seed only: no interval over seeds (1/kappa = {pred.mean:.3g})"
+    return (
+        f"its 1/kappa over {pred.n} seeds, [{pred.low:.3g}, {pred.high:.3g}], contains 0 "
+        "(sticky iff 1/kappa < 0)"
+    )

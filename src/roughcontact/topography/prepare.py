@@ -241,23 +241,34 @@ def reliability_cutoff(
     grid = np.unique(np.concatenate([np.arange(1, 17), np.geomspace(1, largest, 48).round()]))
     grid = [int(m) for m in grid if 1 <= m <= largest]
     bad = [m for m in grid if curvature(m) >= target]
-    how = f"tip radius {radius:.4g} from the {source}, f = {f:g}"
+
+    def length(x):  # metres in words for an SI record, the number otherwise
+        if topo.length_unit == "m":
+            from ._text import length_text
+
+            return length_text(x)
+        return f"{x:.4g}"
+
+    how = f"tip radius {length(radius)} from the {source}, f = {f:g}"
     if not bad:
         message = (
-            f"no tip artefacts: the summit curvature stays below f/R = {target:.4g} down to "
-            f"the smallest scale, {2 * spacing:.4g} ({how})"
+            f"no tip artefacts: the summit curvature stays below f/R = {target:.4g} "
+            f"1/{'m' if topo.length_unit == 'm' else 'length'} down to "
+            f"the smallest scale, {length(2 * spacing)} ({how})"
         )
         return ReliabilityCutoff(None, radius, source, f, False, message)
     m = bad[-1]
     if m == grid[-1]:
         cutoff = 2 * largest * spacing
-        message = f"tip artefacts at every scale up to {cutoff:.4g}: no reliable data ({how})"
+        message = (
+            f"tip artefacts at every scale up to {length(cutoff)}: no reliable data ({how})"
+        )
         return ReliabilityCutoff(cutoff, radius, source, f, True, message)
     for k in range(m + 1, grid[grid.index(m) + 1]):  # the largest violation in between
         if curvature(k) >= target:
             m = k
     cutoff = 2 * spacing * _crossing(m, curvature(m), m + 1, curvature(m + 1), target)
-    message = f"reliable above {cutoff:.4g} (tip artefacts below; {how})"
+    message = f"reliable above {length(cutoff)} (tip artefacts below; {how})"
     return ReliabilityCutoff(cutoff, radius, source, f, False, message)
 
 

@@ -10,7 +10,6 @@ need nothing else.
 
 from __future__ import annotations
 
-import math
 import os
 from pathlib import Path
 
@@ -18,6 +17,7 @@ import numpy as np
 
 from ..errors import ParameterError
 from ._grid import uniform_positions
+from ._metadata import instrument_info as _instrument_info
 from .missing import MISSING_FILL_MAX, missing_policy
 from .topography import Topography, length_factor, pixel_sizes
 
@@ -81,6 +81,7 @@ def load_topography(
     height_unit=None,
     fill_missing=None,
     resample=None,
+    outliers="keep",
 ) -> Topography:
     """Read a measured topography: heights and pixel size in metres, with the metadata.
 
@@ -148,11 +149,17 @@ def load_topography(
     from .._files import regular_input
 
     p = regular_input(path, "path", f"a .npy, text or instrument file ({_ACCEPTED})")
+    from .outliers import OUTLIER_MODES
+
+    if outliers not in OUTLIER_MODES:
+        raise ParameterError(
+            f"outliers must be one of {', '.join(OUTLIER_MODES)}, got {outliers!r}"
+        )
     kind = file_kind(p)
     if kind == "instrument":
         try:
             topo = _read_instrument(
-                p, channel, periodic, pixel_size, height_unit, fill_missing, resample
+                p, channel, periodic, pixel_size, height_unit, fill_missing, resample, outliers
             )
         except ParameterError:
             raise
@@ -162,7 +169,9 @@ def load_topography(
                 f"not be read ({_why(exc)}); expected {_ACCEPTED}"
             ) from None
     else:
-        topo = _read_plain(p, kind, channel, periodic, pixel_size, height_unit, fill_missing)
+        topo = _read_plain(
+            p, kind, channel, periodic, pixel_size, height_unit, fill_missing, outliers
+        )
     _plausible(p, kind, topo)
     return topo
 
@@ -178,7 +187,7 @@ def _plausible(p, kind, topo) -> None:
         check_header(p, topo.info.get("format", ""), topo.shape)
 
 
-def _read_plain(p, kind, channel, periodic, pixel_size, height_unit, fill_missing):
+def _read_plain(p, kind, channel, periodic, pixel_size, height_unit, fill_missing, outliers):
     from .._files import read_array
 
     if channel not in (None, 0, "0", "heights"):
@@ -206,13 +215,29 @@ def _read_plain(p, kind, channel, periodic, pixel_size, height_unit, fill_missin
         px = pixel_size
         info["length_unit"] = "m"
         info["units"] = f"from the caller: pixel_size in m, heights in {unit}"
-    data, info = _missing(p, data, fill_missing, periodic, info)
+    shown = "m" if info["length_unit"] == "m" else "(as stored)"
+    data, info = _missing(p, data, fill_missing, periodic, info, outliers, shown)
     return _record(data, px, periodic, "heights", p, unit, info)
 
 
-def _missing(p, data, fill_missing, periodic, info):
-    """Fill or refuse the missing points (NaN or masked): :mod:`.missing`'s policy."""
-    values, new_info = missing_policy(f"path {str(p)!r}", data, fill_missing, periodic, info)
+def _missing(p, data, fill_missing, periodic, info, outliers="keep", unit=""):
+    """Look for outliers (:mod:`.outliers`; ``"remove"``: they become missing points),
+    then fill or refuse the missing points (NaN or masked): :mod:`.missing`'s policy."""
+    from .outliers import find_outliers
+
+    missing = np.ma.getmaskarray(data) | ~np.isfinite(np.ma.getdata(data))
+    values = np.array(np.ma.getdata(data), dtype=np.float64)
+    found, report = find_outliers(values, missing, periodic=periodic)
+    removed = outliers == "remove" and report["points"] > 0
+    report["action"] = "removed" if removed else "kept"
+    report["unit"] = str(unit)
+    info = {**info, "outliers": report}
+    if removed:
+        data = np.ma.masked_array(values, mask=missing | found)
+    values, new_info = missing_policy(
+        f"path {str(p)!r}", data, fill_missing, periodic, info,
+        outliers=report["points"] if removed else 0,
+    )  # fmt: skip
     return values, info if new_info is None else new_info
 
 
@@ -309,7 +334,9 @@ def _choose_channel(p, reader, channel):
     )
 
 
-def _read_instrument(p, channel, periodic, pixel_size, height_unit, fill_missing, resample):
+def _read_instrument(
+    p, channel, periodic, pixel_size, height_unit, fill_missing, resample, outliers="keep"
+):
     reader = _open_reader(p)
     try:
         ch = _choose_channel(p, reader, channel)
@@ -353,7 +380,7 @@ def _read_instrument(p, channel, periodic, pixel_size, height_unit, fill_missing
     info = _instrument_info(reader, ch, info_in)
     if x is not None:
         data, steps, info = _resample(p, np.asarray(x), data, resample, fill_missing, info)
-    data, info = _missing(p, data, fill_missing, periodic, info)
+    data, info = _missing(p, data, fill_missing, periodic, info, outliers, str(unit))
     px = tuple(float(s) * length_factor("lateral unit", lateral) for s in steps)
     info["scan_size"] = [n * s for n, s in zip(data.shape, px, strict=True)]
     heights = data * length_factor("height unit", unit)
@@ -441,38 +468,3 @@ def _resample(p, x, heights, resample, fill_missing, info):
         "max_deviation_steps": deviation,
     }
     return out, (step,), info
-
-
-def _instrument_info(reader, ch, topo_info) -> dict:
-    """JSON-ready metadata: the format, the channels, the instrument, the tip radius (m)."""
-    try:
-        from SurfaceTopography import __version__ as version
-    except ImportError:  # pragma: no cover - imported already
-        version = "?"
-    meta = {**(getattr(ch, "info", {}) or {}), **topo_info}
-    meta.pop("raw_metadata", None)  # vendor key/value dumps: large, not always JSON
-    info = {
-        "format": _format(reader),
-        "reader": f"SurfaceTopography {version}",
-        "length_unit": "m",
-        "channel_index": int(ch.index),
-        "channels": [c.name for c in reader.channels],
-        "height_scale_factor": getattr(ch, "height_scale_factor", None),
-        **meta,
-    }
-    if getattr(ch, "channel_id", None) is not None:
-        info["channel_id"] = str(ch.channel_id)
-    radius = _tip_radius(meta)
-    if radius is not None:
-        info["tip_radius"] = radius
-    return info
-
-
-def _tip_radius(meta) -> float | None:
-    """The tip radius (m) stored as ``instrument.parameters.tip_radius``, or None."""
-    try:
-        r = meta["instrument"]["parameters"]["tip_radius"]
-        value = float(r["value"]) * length_factor("tip radius unit", r["unit"])
-    except (KeyError, TypeError, ValueError):
-        return None
-    return value if math.isfinite(value) and value > 0 else None

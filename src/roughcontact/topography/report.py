@@ -50,8 +50,13 @@ def summary(result: StickResult) -> list[str]:
     c = v.centre
     lam_c, a0 = s.measured_scale, float(result.inputs["atomic_spacing"])
     lines = [f"verdict: {v.text}"]
-    first = [n for n in result.notes if n.startswith("no extrapolated verdict")]
+    first = [
+        n
+        for n in result.notes
+        if n.startswith("no extrapolated verdict") or n.startswith("pixel_size '")
+    ]
     lines += first
+    lines.append(_answers(v, lam_c))
     lines.append(
         f"measured down to {_length_text(lam_c)}: h'rms = {s.rms_slope:.3g}, "
         f"h''rms = {s.rms_curvature:.3g} 1/m, d_rep = {_length_text(s.d_rep)}, margin "
@@ -99,14 +104,30 @@ def summary(result: StickResult) -> list[str]:
     return lines
 
 
+def _answers(v, lam_c) -> str:
+    """The whole surface's answer (``sticky``) beside the measured scale's
+    (``sticky_measured_scale``), as the JSON keys hold them."""
+    words = {True: "sticky", False: "not sticky", None: "undecided"}
+    whole = words[v.sticky]
+    if v.sticky is None and v.scope == "measured scale":
+        whole += " (nothing extrapolated below the measured scale)"
+    elif v.sticky is None:
+        whole += " (depends on unmeasured roughness)"
+    return (
+        f"answer for the whole surface (sticky): {whole}; with the roughness down to the "
+        f"measured {_length_text(lam_c)} only (sticky_measured_scale): "
+        f"{words[v.sticky_measured_scale]}"
+    )
+
+
 def simulation_summary(sim) -> list[str]:
     """Three lines on the simulation of :mod:`roughcontact.topography.simulate`."""
     s, i, inv = sim.surface, sim.interaction, sim.inverse_kappa
     interval = "" if inv.n < 2 else f", 1/kappa in [{inv.low:.3g}, {inv.high:.3g}]"
-    seeds = "; ".join(
-        f"{r.kappa:.3g} ({r.kappa_rep:.3g}, {r.kappa_att:.3g})" if not r.error else "failed"
-        for r in sim.runs
-    )
+    from .notes import predicted_reason, seed_status
+
+    seeds = "; ".join(seed_status(r) for r in sim.runs)
+    why = predicted_reason(sim)
     pull = sim.pull_off_pressure
     how = (
         f"over {inv.n} of {len(sim.runs)} seeds{interval}"
@@ -114,7 +135,8 @@ def simulation_summary(sim) -> list[str]:
         else f"({len(sim.runs)} seeds, none analysed at 1 %: see the notes)"
     )
     return [
-        f"simulated: {sim.verdict} {how}; Eq. 10 on the same surfaces: {sim.predicted_verdict}",
+        f"simulated: {sim.verdict} {how}; Eq. 10 on the same surfaces: {sim.predicted_verdict}"
+        + (f" ({why})" if why else ""),
         f"simulation: {s['size']}^2 sites of a0 = {_length_text(s['atomic_spacing'])}, "
         f"lambda_s = {s['short_cutoff_over_a0']:g} a0, H = {s['hurst']:.2f}, "
         f"h'rms = {s['rms_slope']:.3g}; wall l_a/a0 = {i['adhesion_length_over_a0']:.3g}, "
@@ -130,18 +152,34 @@ def hysteresis_summary(hy) -> list[str]:
     w, sd = hy["dissipated_energy_si"], hy["dissipated_energy_si_std"]
     if not np.isfinite(w):
         return ["hysteresis: not measured (no seed's cycle has a retraction)"]
+    seeds = hy["seeds"]
+    if seeds and all(s.get("zero_within_tolerance") for s in seeds):
+        bound = max(float(s["energy_uncertainty_si"]) for s in seeds)
+        return [
+            f"hysteresis: none: no seed's cycle has a jump, so the energy dissipated per "
+            f"approach–retraction cycle is 0 within ± {bound:.2g} J/m^2 (the solver's "
+            "tolerance)",
+            f"hysteresis per seed: {'; '.join(_seed_energy(s) for s in seeds)}",
+        ] + [f"note: {n}" for n in hy["notes"]]
     spread = f" ± {sd:.3g}" if np.isfinite(sd) else " (1 seed: no spread)"
     scan = hy["dissipated_energy_scan"]
-    per_seed = "; ".join(
-        f"seed {s['seed']}: {s['dissipated_energy_si']:.3g} J/m^2, {s['jumps']} jumps"
-        for s in hy["seeds"]
-    )
+    per_seed = "; ".join(_seed_energy(s) for s in hy["seeds"])
     return [
         f"hysteresis: energy dissipated per approach–retraction cycle {w:.3g}{spread} J/m^2 "
         f"(mean ± sd over seeds), {hy['jumps_mean']:.3g} jumps per cycle"
         + (f"; over the scanned area {scan:.3g} J" if np.isfinite(scan) else ""),
         f"hysteresis per seed: {per_seed}",
     ] + [f"note: {n}" for n in hy["notes"]]
+
+
+def _seed_energy(s) -> str:
+    """One seed's dissipated energy: a jump-free cycle as 0 within its bound."""
+    if s.get("zero_within_tolerance"):
+        return (
+            f"seed {s['seed']}: 0 (within ± {s['energy_uncertainty_si']:.2g}) J/m^2, "
+            f"{s['jumps']} jumps"
+        )
+    return f"seed {s['seed']}: {s['dissipated_energy_si']:.3g} J/m^2, {s['jumps']} jumps"
 
 
 # --------------------------------------------------------------------------- figures
@@ -291,8 +329,10 @@ FIGURES = {
 
 
 def figure_contact_map(result: StickResult):
-    """Repulsive (orange) and attractive (black) sites of the first simulated seed at
-    A_rep ~ 1 % (Fig. 1's style, :func:`roughcontact.plot.figure1`); None if none kept."""
+    """Repulsive (orange) and attractive (black) sites of the first simulated seed in the
+    approach's state nearest A_rep = 1 % (Fig. 1's style, :func:`roughcontact.plot.figure1`;
+    the panel title and the legend give that state's own A_rep/A0); None if none kept or
+    the state has no repulsive site."""
     from ..plot import figure1
 
     sim = result.simulation
@@ -301,8 +341,12 @@ def figure_contact_map(result: StickResult):
         return None
     seed, pressure = found
     la = sim.interaction["adhesion_length_over_a0"]
-    label = rf"seed {seed}, $\ell_a/a_0 = {la:.3g}$ ({sim.verdict})"
-    return figure1([pressure], labels=[label], target_area=0.01)
+    # the state kept is the approach's nearest to 1 %: title and legend give its own area
+    area = float(np.mean(np.asarray(pressure) > 0))
+    if area == 0:  # e.g. a soft solid jumping into contact: nothing repulsive to show
+        return None
+    label = rf"seed {seed}, $\ell_a/a_0 = {la:.3g}$ ({sim.verdict}; the state nearest 1 %)"
+    return figure1([pressure], labels=[label], target_area=float(f"{area:.2g}"))
 
 
 def write_report(

@@ -20,6 +20,8 @@ __all__ = ["UNITS", "StickResult"]
 #: The unit of every number in :meth:`StickResult.to_dict` (dotted paths for nested keys;
 #: list entries take the unit of their list).
 UNITS = {
+    "sticky": "bool or null (the whole surface's answer; null: undecided)",
+    "sticky_measured_scale": "bool or null (Eq. 10 with the roughness down to measured_scale)",
     "margin": "1 (kappa_rep/kappa_att at the measured scale; > 1 sticky)",
     "margin_atomic": "1 (kappa_rep/kappa_att at lambda_s = a0, extrapolated)",
     "margin_atomic_range": "1",
@@ -86,10 +88,27 @@ UNITS = {
     "kappa_rep_comparison.*": "1 (kappa_rep; margin at the measured scale)",
     "missing_data.points": "grid points",
     "missing_data.fraction": "1",
+    "missing_data.outliers": "grid points (outliers removed among the missing points)",
+    "missing_data.slope_change": "1 (rms slope of the filled scan / of the measured pixels - 1)",
+    "outliers.points": "grid points",
+    "outliers.fraction": "1",
+    "outliers.spikes": "grid points",
+    "outliers.sentinel_value": "outliers.unit (the file's height unit)",
+    "outliers.sentinel_points": "grid points",
+    "outliers.isolated": "grid points",
+    "outliers.threshold": "1 (robust standard deviations)",
+    "outliers.scale": "outliers.unit (per direction)",
     "criterion_measured.*": "SI: Pa, J/m^2, m, 1/m; see roughcontact criterion --json",
     "criterion_atomic.*": "SI: Pa, J/m^2, m, 1/m; see roughcontact criterion --json",
     "criteria.*": "SI: Pa, J/m^2, m, 1/m (inputs); each criterion's parameter is dimensionless;"
     " scale in m",
+    "model_checks.monti_sanner_pastewka.threshold": "1",
+    "model_checks.monti_sanner_pastewka.measured.scale": "m",
+    "model_checks.monti_sanner_pastewka.measured.g0": "m (16/3 h'rms^2/h''rms)",
+    "model_checks.monti_sanner_pastewka.measured.rho_over_g0": "1",
+    "model_checks.monti_sanner_pastewka.extrapolated.scale": "m",
+    "model_checks.monti_sanner_pastewka.extrapolated.g0": "m",
+    "model_checks.monti_sanner_pastewka.extrapolated.rho_over_g0": "1",
     "hysteresis.dissipated_energy_si": "J/m^2 (mean over seeds; _std: sample sd)",
     "hysteresis.dissipated_energy_scan": "J (over scan_area, extrapolated)",
     "hysteresis.scan_area": "m^2",
@@ -97,6 +116,8 @@ UNITS = {
     "hysteresis.seeds.dissipated_energy": "E* a0 per A0 (the simulation's lattice units)",
     "hysteresis.seeds.dissipated_energy_si": "J/m^2",
     "hysteresis.seeds.energy_uncertainty_si": "J/m^2",
+    "hysteresis.seeds.raw_dissipated_energy_si": "J/m^2 (the trapezoid's, before the zero rule)",
+    "hysteresis.seeds.tolerance_si": "J/m^2 (the solver's tolerance x the path's length)",
     "hysteresis.seeds.energy_per_jump_joules": "J (over patch_area)",
     "hysteresis.seeds.patch_area": "m^2 (the simulated patch, size^2 a0^2)",
     **SIMULATION_UNITS,
@@ -137,6 +158,10 @@ class StickResult:
         The simulation's approach–retraction cycles in SI (J/m², J over the scan):
         :func:`roughcontact.topography.hysteresis.simulation_hysteresis`; None without
         a simulation.
+    model_checks : dict or None
+        Checks of the model's assumptions the field uses
+        (:func:`roughcontact.topography.modelchecks.model_checks`: Monti, Sanner &
+        Pastewka's rho/g0 < 0.1 at the measured scale and extrapolated).
     """
 
     topography: object = field(repr=False)
@@ -149,11 +174,21 @@ class StickResult:
     kappa_rep_check: dict | None = None
     criteria: dict | None = None
     hysteresis: dict | None = None
+    model_checks: dict | None = None
 
     @property
     def sticky(self) -> bool | None:
-        """True, False, or None (depends on roughness below the resolved scale)."""
+        """The whole surface's answer: True or False only where it holds for every
+        smallest roughness scale down to a0 (or the necessary condition fails with the
+        measured roughness), else None (it depends on roughness below the resolved
+        scale, or nothing could be extrapolated)."""
         return self.verdict.sticky
+
+    @property
+    def sticky_measured_scale(self) -> bool | None:
+        """Eq. 10 with the measured roughness alone (at ``measured_scale``): True or
+        False, a scoped answer (roughness below that scale can flip it)."""
+        return self.verdict.sticky_measured_scale
 
     @property
     def margin(self) -> float:
@@ -172,6 +207,7 @@ class StickResult:
         crit_m, crit_a = v.measured, v.atomic
         d = {
             "sticky": v.sticky,
+            "sticky_measured_scale": v.sticky_measured_scale,
             "verdict": v.text,
             "margin": v.margin,
             "margin_atomic": v.margin_atomic,
@@ -208,6 +244,7 @@ class StickResult:
             "good_range": None if self.good_range is None else self.good_range.to_dict(),
             "kappa_rep_comparison": self._kappa_rep_dict(),
             "missing_data": dict(getattr(topo, "info", {}).get("missing_data") or {}) or None,
+            "outliers": dict(getattr(topo, "info", {}).get("outliers") or {}) or None,
             "extrapolated": None
             if crit_a is None
             else {
@@ -259,6 +296,9 @@ class StickResult:
             "scan": {
                 "source": getattr(topo, "source", ""),
                 "channel": getattr(topo, "channel", ""),
+                "channel_index": (getattr(topo, "info", {}) or {}).get("channel_index"),
+                "channels": list((getattr(topo, "info", {}) or {}).get("channels") or []),
+                "tip_radius_stated": (getattr(topo, "info", {}) or {}).get("tip_radius_stated"),
                 "dim": s.dim,
                 "shape": list(s.shape),
                 "pixel_size": list(s.pixel_size),
@@ -276,6 +316,7 @@ class StickResult:
             "simulation": None if self.simulation is None else self.simulation.to_dict(),
             "criteria": self.criteria,
             "hysteresis": self.hysteresis,
+            "model_checks": self.model_checks,
             "units": dict(UNITS),
         }
         return json_safe(d)

@@ -29,8 +29,9 @@ Discussion.
 
 **When the extrapolation is not supported** (the spectrum between the instrument's
 limits is not self-affine, :mod:`roughcontact.topography.fitrange`), ``no_extrapolation``
-names why, and the verdict is the one at the measured scale only (``scope``
-``"measured scale"``), unless the necessary condition ``l_a/a0 > 0.49 h'_rms`` already
+names why, and the only answer is the one at the measured scale (``scope``
+``"measured scale"``, ``sticky_measured_scale``; ``sticky`` is None: finer roughness can
+still flip it), unless the necessary condition ``l_a/a0 > 0.49 h'_rms`` already
 fails there: roughness below the measured scale can only raise ``h'_rms``, so the
 surface is then not sticky at every smaller scale too (``scope`` ``"all scales
 (necessary condition)"``).
@@ -79,8 +80,11 @@ class Verdict:
     Attributes
     ----------
     sticky : bool or None
-        True (sticky for every lambda_s in [a0, lambda_c] and every H of the band),
-        False (never sticky there), None (depends on roughness below ``depends_below``).
+        The whole surface's answer: True (sticky for every lambda_s in [a0, lambda_c]
+        and every H of the band), False (never sticky there, or the necessary condition
+        fails with the measured roughness already), None (depends on roughness below
+        ``depends_below``, or nothing could be extrapolated: ``scope`` ``"measured
+        scale"``, see ``sticky_measured_scale``).
     text : str
         ``"sticky"``, ``"not sticky"`` or ``"depends on roughness below X nm (...)"``.
     margin : float
@@ -122,6 +126,10 @@ class Verdict:
         :data:`CONTINUUM_MIN_D_REP` a0 or h'_rms >= 1 (None: nowhere).
     continuum_reason : str
         What is reached there, or ``""``.
+    sticky_measured_scale : bool or None
+        Eq. 10 with the measured roughness alone (lambda_s = lambda_c): True or False;
+        a scoped answer, not the surface's (``sticky`` is that). None only for records
+        built without it.
     """
 
     sticky: bool | None
@@ -144,6 +152,7 @@ class Verdict:
     no_extrapolation: str = ""
     continuum_limit: float | None = None
     continuum_reason: str = ""
+    sticky_measured_scale: bool | None = None
 
     @property
     def extrapolated(self) -> bool:
@@ -274,6 +283,7 @@ def stickiness_verdict(
         atomic=atomic,
         continuum_limit=limit,
         continuum_reason=why,
+        sticky_measured_scale=bool(measured.sticky),
     )
 
 
@@ -289,9 +299,14 @@ def _measured_only(stats, measured, a0, reason) -> Verdict:
             "raises h'rms"
         )
     else:
-        sticky, scope = bool(measured.sticky), "measured scale"
-        now = "sticky" if sticky else "not sticky"
-        text = f"{now} at the measured scale ({where}); no extrapolated verdict"
+        # a scoped answer: roughness below the measured scale can still flip it, so the
+        # surface's answer is open (sticky None); the measured one is kept beside it
+        sticky, scope = None, "measured scale"
+        now = "sticky" if measured.sticky else "not sticky"
+        text = (
+            f"no verdict for the whole surface: {now} at the measured scale ({where}) only; "
+            "no extrapolated verdict"
+        )
     one = np.array([[measured.margin]])
     limit, why = _continuum_limit(
         np.array([lam_c]), np.array([measured.rms_slope]), np.array([measured.rms_curvature]), a0
@@ -317,6 +332,7 @@ def _measured_only(stats, measured, a0, reason) -> Verdict:
         no_extrapolation=reason,
         continuum_limit=limit,
         continuum_reason=why,
+        sticky_measured_scale=bool(measured.sticky),
     )
 
 

@@ -68,6 +68,7 @@ def stick(
     fill_missing=None,
     counter_modulus=None,
     counter_poisson=None,
+    outliers="remove",
 ) -> StickResult:
     """Is this measured surface sticky? Pastewka & Robbins (2014), Eq. 10, for a scan.
 
@@ -140,6 +141,12 @@ def stick(
         :data:`~roughcontact.topography.read.MISSING_FILL_MAX` of the scan by harmonic
         interpolation, with a note, and refuses more; True fills any fraction (with a
         note stating it); False refuses any.
+    outliers : {"remove", "keep"}
+        Spikes, sentinel values and isolated pixels (the rule of
+        :mod:`roughcontact.topography.outliers`): "remove" (default) treats them as
+        missing points (filled by harmonic interpolation, under ``fill_missing``'s
+        limit), "keep" analyses them as heights; either way they are counted in a note
+        and in ``to_dict()["outliers"]``.
     counter_modulus, counter_poisson : float or str, optional
         The counter-surface's Young's modulus and Poisson ratio (or its plane-strain
         modulus without ``counter_poisson``): ``1/E* = (1-nu1^2)/E1 + (1-nu2^2)/E2``
@@ -162,7 +169,9 @@ def stick(
     given_cutoff = _length("reliability_cutoff", reliability_cutoff)
     if tip is not None and given_cutoff is not None:
         raise ParameterError("give tip_radius or reliability_cutoff, not both")
-    topo = _read(scan, channel, pixel_size, height_unit, periodic, fill_missing, Topography)
+    topo = _read(
+        scan, channel, pixel_size, height_unit, periodic, fill_missing, Topography, outliers
+    )
     from .._plausibility import check_heights
 
     check_heights(topo.heights, "scan")  # |h| past 1e150 is out of range, not "flat"
@@ -171,6 +180,11 @@ def stick(
     if not float(np.std(topo.heights)) > 1e-12 * raw:  # what is left is round-off
         raise ParameterError(f"scan is flat after detrend={detrend!r}: no roughness to analyse")
     notes = []
+    from .fitrange import clamp_fit_range
+
+    fit_range, clamped = clamp_fit_range(fit_range, topo.pixel_size, topo.shape)
+    if clamped:
+        notes.append(clamped)
     cutoff, tip_source, cutoff_source = given_cutoff, "not used", "reliability_cutoff"
     if cutoff is None:
         from .prepare import reliability_cutoff as tip_cutoff
@@ -184,8 +198,7 @@ def stick(
             reliability.tip_radius_source,
         )
         cutoff_source = "tip radius" if cutoff is not None else "none (Nyquist wavelength)"
-        if tip is not None:
-            notes.append(f"reliability: {reliability.message}")
+        notes.append(_tip_note(topo, reliability))
     stats, good, problem, cutoff_source = _statistics(
         topo, cutoff, fit_range, detect=given_cutoff is None, source=cutoff_source
     )
@@ -224,6 +237,7 @@ def stick(
         "detrend": detrend,
         "hurst_sigmas": float(hurst_sigmas),
         "fill_missing": fill_missing,
+        "outliers": outliers,
     }  # fmt: skip
     simulation = None
     if simulate and problem:
@@ -256,17 +270,50 @@ def stick(
             scan_area=float(np.prod(topo.pixel_size) * np.prod(topo.shape))
             if len(topo.shape) == 2 else None,
         )  # fmt: skip
+    from .modelchecks import model_checks
+
+    checks = model_checks(stats, v)
     return StickResult(
+        model_checks=checks,
         criteria=_criteria(stats, m, inputs["youngs_modulus"], simulation),
         hysteresis=hysteresis,
         topography=topo,
         statistics=stats,
         verdict=v,
         inputs=inputs,
-        notes=tuple(notes + notes_for(topo, stats, v, good, moduli, check)),
+        notes=tuple(
+            notes
+            + notes_for(topo, stats, v, good, moduli, check)
+            + [checks["monti_sanner_pastewka"]["text"]]
+        ),
         simulation=simulation,
         good_range=good,
         kappa_rep_check=check,
+    )
+
+
+def _tip_note(topo, reliability) -> str:
+    """Where the tip radius of the reliability cutoff came from, or that none is stated."""
+    info = getattr(topo, "info", {}) or {}
+    stated = info.get("tip_radius_stated") or {}
+    if reliability.tip_radius_source == "argument":
+        return f"reliability (tip radius given): {reliability.message}"
+    if reliability.tip_radius_source == "file":
+        return (
+            f"reliability (tip radius stated in the file, {stated.get('text', '?')!r}, used "
+            f"for the cutoff, Sanner et al. 2022): {reliability.message}"
+        )
+    if stated.get("unreadable"):
+        return (
+            f"the file states a tip radius {stated.get('text')!r} whose unit is not a length: "
+            "not used; give --tip-radius (tip_radius=) for a tip-based reliability cutoff"
+        )
+    what = "the file states" if info.get("format") not in ("npy", "text", None) else (
+        "a .npy or text file states"
+    )
+    return (
+        f"{what} no tip or stylus radius: no tip-based reliability cutoff; give "
+        "--tip-radius (tip_radius=) if you know it"
     )
 
 
@@ -317,32 +364,103 @@ def _statistics(topo, cutoff, fit_range, *, detect, source):
     return stats, good, problem, f"instrument {what} (detected in the PSD)"
 
 
-def _read(scan, channel, pixel_size, height_unit, periodic, fill_missing, Topography):
-    """The scan as a Topography in metres (a file read by ``load_topography``)."""
+def _read(scan, channel, pixel_size, height_unit, periodic, fill_missing, Topography, outliers):
+    """The scan as a Topography in metres (a file read by ``load_topography``), its
+    outliers removed or kept (:mod:`.outliers`)."""
+    from .outliers import OUTLIER_MODES
+
+    if outliers not in OUTLIER_MODES:
+        raise ParameterError(
+            f"outliers must be one of {', '.join(OUTLIER_MODES)}, got {outliers!r}"
+        )
     if isinstance(scan, Topography):
         if channel is not None or pixel_size is not None or height_unit is not None:
             raise ParameterError(
                 "channel, pixel_size and height_unit apply to a file, not to a Topography"
             )
-        topo = scan  # a Topography holds no missing points (it refuses NaN)
+        topo = _topography_outliers(scan, outliers, fill_missing)
     else:
         from .read import load_topography
 
         px = pixel_size
+        given = [] if px is None else list(px) if isinstance(px, (tuple, list)) else [px]
+        bare = [str(p).strip() for p in given if isinstance(p, str) and _is_number(p)]
         if px is not None and not isinstance(px, (tuple, list)):
             px = _length("pixel_size", px)
         elif px is not None:
             px = tuple(_length("pixel_size", p) for p in px)
         topo = load_topography(
             scan, channel=channel, periodic=bool(periodic), pixel_size=px,
-            height_unit=height_unit, fill_missing=fill_missing,
+            height_unit=height_unit, fill_missing=fill_missing, outliers=outliers,
         )  # fmt: skip
     if topo.length_unit != "m":
         raise ParameterError(
             "scan has no length unit (lattice units): give pixel_size (m) and height_unit "
             "for a file without units, e.g. pixel_size='10 nm', height_unit='nm'"
         )
+    if not isinstance(scan, Topography) and topo.info.get("format") in ("npy", "text"):
+        topo = _plausible_units(topo, bare, height_unit)
     return topo
+
+
+def _is_number(text) -> bool:
+    try:
+        float(str(text).strip())
+    except ValueError:
+        return False
+    return True
+
+
+def _plausible_units(topo, bare, height_unit):
+    """A .npy/text file's units are the caller's: the bounds of an instrument file's
+    (:func:`roughcontact._plausibility.check_metres`) refuse absurd ones, and a bare
+    number given as a length (metres) is said next to the result."""
+    import dataclasses
+
+    from .._plausibility import check_metres
+
+    hint = ""
+    if bare:
+        hint = (
+            f"; pixel_size {', '.join(repr(b) for b in bare)} has no unit and was read as "
+            f"metres: give e.g. '{bare[0]} nm' (--pixel-size '{bare[0]} nm')"
+        )
+    if height_unit is None:
+        hint += "; the heights were read as metres (no height_unit, --height-unit, given)"
+    try:
+        check_metres(topo.heights, topo.pixel_size, "scan")
+    except ParameterError as exc:
+        raise ParameterError(f"{exc}{hint}") from None
+    if not bare:
+        return topo
+    px = ", ".join(dict.fromkeys(_length_text(a) for a in topo.pixel_size))
+    warning = (
+        f"pixel_size {', '.join(repr(b) for b in bare)} was given without a unit: read as "
+        f"metres (pixel size {px}); if you meant another unit, give it (e.g. "
+        f"--pixel-size '{bare[0]} nm')"
+    )
+    return dataclasses.replace(topo, info={**topo.info, "units_warning": warning})
+
+
+def _topography_outliers(topo, outliers, fill_missing):
+    """A Topography given in Python: its outliers found, and removed (filled as missing
+    points) or kept, as for a file."""
+    import dataclasses
+
+    from .missing import missing_policy
+    from .outliers import find_outliers
+
+    found, report = find_outliers(topo.heights, periodic=topo.periodic)
+    removed = outliers == "remove" and report["points"] > 0
+    report = {**report, "action": "removed" if removed else "kept", "unit": topo.length_unit}
+    info = {**topo.info, "outliers": report}
+    if not removed:
+        return dataclasses.replace(topo, info=info)
+    data = np.ma.masked_array(topo.heights, mask=found)
+    values, new = missing_policy(
+        "scan", data, fill_missing, topo.periodic, info, outliers=report["points"]
+    )
+    return dataclasses.replace(topo, heights=values, info=new)
 
 
 def _detrend(topo, mode):
