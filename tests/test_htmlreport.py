@@ -50,11 +50,11 @@ def test_markdown_of_the_same_blocks():
 @pytest.fixture(scope="module")
 def result(tmp_path_factory):
     h = rc.self_affine(64, hurst=0.7, rms_slope=0.2, short_cutoff=4.0, pixel_size=2.0, seed=4)
-    h[10, 10] += 50 * h.std()  # a spike: the map's colour scale ignores it
+    h[10, 10] += 50 * h.std()  # a spike, kept (outliers="keep"): the map's scale ignores it
     path = tmp_path_factory.mktemp("scan") / "scan.npy"
     np.save(path, h)
     return rc.stick(path, pixel_size=2e-9, height_unit="nm", modulus="10 MPa",
-                    work_of_adhesion="50 mJ/m^2")  # fmt: skip
+                    work_of_adhesion="50 mJ/m^2", outliers="keep")  # fmt: skip
 
 
 def _text(page: str) -> str:
