@@ -67,8 +67,13 @@ CASES = [
     ),
     (
         "smooth-stalled",
-        dict(interaction=SMOOTH, offset=TOP - 1.0),  # the float64 floor
+        dict(interaction=SMOOTH, offset=TOP + 0.5, tol=1e-16),  # below the floor
         SolveStatus.STALLED,
+    ),
+    (
+        "smooth-runaway",
+        dict(interaction=SMOOTH, offset=TOP - 1.0),  # far through full contact: ~1e13 E*
+        SolveStatus.RUNAWAY,
     ),
     (
         "bounded-converged",

@@ -22,12 +22,23 @@ import dataclasses
 import math
 import time
 
-from .._backend import dtype_name
+from .._backend import dtype_name, is_numpy_array, to_numpy
+from .adhesive_rules import carrying, lowest_smooth_offset, physical_pressure_scale
 from .inputs import check_problem, checked_heights, height_statistics
 from .result import SolveStatus
 from .roots import false_position, illinois
 
 __all__ = ["solve_at_load"]
+
+
+def _one_minimisation(minimize, heights, substrate) -> bool:
+    """Whether ``minimize`` takes the load itself (:mod:`._free_mean`): the smooth solver on
+    NumPy heights, a periodic substrate with a rigid mean."""
+    from .smooth import minimize_energy
+
+    periodic = tuple(substrate.work_shape) == tuple(substrate.shape)
+    return (minimize is minimize_energy and is_numpy_array(heights) and periodic
+            and substrate.rigid_mean)  # fmt: skip
 
 
 def solve_at_load(
@@ -61,7 +72,8 @@ def solve_at_load(
     def evaluate(d):
         near = min(states, key=lambda x: abs(x - d)) if states else None
         start = states[near] if near is not None else initial
-        with checked_heights(heights, stats):  # checked above: not again in every inner solve
+        # checked above: not again in every inner solve; their floor judged with the load
+        with checked_heights(heights, stats), carrying(load):
             res = minimize(
                 heights, substrate, interaction, offset=d, initial=start, tol=tol,
                 max_iter=max_iter, callback=callback, dtype=dtype,
@@ -97,6 +109,19 @@ def solve_at_load(
         d_a = float(initial.offset)
     else:
         d_a = stats["max"] + (interaction.equilibrium_distance or 0.0)  # None: hard core
+    if _one_minimisation(minimize, h, substrate):
+        # the load inside the one minimisation (:mod:`._free_mean`): the cost of an
+        # offset-controlled solve; the nested search below only where it fails
+        with checked_heights(heights, stats), carrying(load):
+            res = minimize(
+                heights, substrate, interaction, offset=d_a, initial=initial, tol=tol,
+                max_iter=max_iter, callback=callback, dtype=dtype, load=load,
+            )  # fmt: skip
+        total["it"] += res.iterations
+        if res.converged and abs(res.load - load) <= load_tol:
+            return finish(res, True, "converged (load control)")
+        if res.status in (SolveStatus.CALLBACK, SolveStatus.ITERATION_LIMIT, SolveStatus.STALLED):
+            return finish(res, False, res.message)
     res_a = evaluate(d_a)
     f_a = res_a.load - load
     if not res_a.converged or abs(f_a) <= load_tol:
@@ -110,11 +135,23 @@ def solve_at_load(
     lowest = -math.inf
     if interaction.hard_core and substrate.rigid_mean:
         lowest = stats["mean"]
+    elif substrate.rigid_mean:  # no lower than full contact at the load (adhesive_rules)
+        pressure_scale = physical_pressure_scale(to_numpy(h), substrate, interaction)
+        lowest = lowest_smooth_offset(interaction, stats["mean"], load, pressure_scale)
     for _ in range(60):
         keep_only(d_a)
         d_b = d_a + direction * step
         near_bound = d_b <= lowest
-        if near_bound:
+        if near_bound and not interaction.hard_core:
+            if d_a <= lowest:
+                return finish(
+                    res_a, False, f"load {load:g} not reached: it is {res_a.load:g} at offset "
+                    f"{d_a:g}, in full contact (the law's repulsion there exceeds the load by "
+                    "ten times the pressure scale E*·h'rms)",
+                    SolveStatus.FULL_CONTACT,
+                )  # fmt: skip
+            d_b = lowest
+        elif near_bound:
             if d_a - lowest <= 1e-6 * scale:
                 return finish(
                     res_a, False, f"load {load:g} not reached: it is {res_a.load:g} at offset "

@@ -1,0 +1,77 @@
+r"""Load control inside the one minimisation of :mod:`.smooth`: the uniform mode set free.
+
+With a rigid uniform mode the offset ``d`` is the gap's mean plus ``mean(h)``. Under a load
+``N`` (mean pressure) the energy per site is
+
+.. math:: E(g) = \tfrac12 w K w + \sum_i V(g_i) + N\, n\, d, \qquad
+          w = g - (d - h),\ d = \bar g + \bar h,
+
+so its gradient is :math:`K w - p_{int}(g) + N`: the force imbalance of the offset-controlled
+solve plus its mean, :math:`N - \bar p`, the load not carried. The gap (the iterate) then
+moves in all its modes, the offset with it, and the minimum is the equilibrium that carries
+``N`` and is stable under load control (a minimum of the enthalpy), found in one nonlinear
+CG run instead of a root search over nested solves (:mod:`.load_control`). ``K`` kills the
+uniform mode (rigid), so ``K s`` and ``K w`` are those of the offset-controlled loop; only the
+preconditioner needs a uniform block: ``z += mean(gr) / k_u`` with ``k_u``
+(:func:`uniform_stiffness`) the interaction's mean curvature on its repulsive sites, at least
+the longest wavelength's elastic stiffness ``E* pi / L``. One mode mis-scaled costs conjugate
+gradients about one iteration, so a rough ``k_u`` is enough.
+"""
+
+from __future__ import annotations
+
+import math
+
+__all__ = ["FreeMean", "add_uniform", "uniform_stiffness"]
+
+
+class FreeMean:
+    """The free uniform mode of one load-controlled minimisation (module docstring)."""
+
+    def __init__(self, load, interaction, substrate, heights, work):
+        self.load, self.law, self.substrate, self.work = float(load), interaction, substrate, work
+        self.reach = max(float(work.xp.std(heights)), substrate.pixel_size)
+        self.k_u = None
+
+    def mean_free(self, gr):
+        """``gr - mean(gr)``: what the block preconditioner takes."""
+        return gr - self.work.xp.mean(gr)
+
+    def add(self, z, gr, gap, it, refresh_every):
+        """``z`` with its uniform block (:func:`add_uniform`); ``k_u`` refreshed with the
+        preconditioner's stiff sites."""
+        if self.k_u is None or it % refresh_every == 1:
+            self.k_u = uniform_stiffness(self.law, gap, self.substrate, self.work)
+        return add_uniform(z, gr, self.k_u, self.reach, self.work)
+
+    def moved(self, offset, gap, base):
+        """The offset and ``base`` (``d - h``) of the final gap: moved with its mean."""
+        shift = float(self.work.xp.mean(gap - base))
+        return offset + shift, base + shift
+
+
+def uniform_stiffness(interaction, gap, substrate, work) -> float:
+    """``k_u`` (pressure/length): the mean of ``max(V''(g), 0)`` over the grid, at least
+    ``E* pi / max(L)`` (module docstring)."""
+    xp = work.xp
+    near = work.interacting(gap, interaction.cutoff)
+    curvature = interaction.curvature(gap if near is None else gap[near])
+    total = float(xp.sum(xp.where(curvature > 0, curvature, 0.0)))
+    size = max(substrate.shape) * substrate.pixel_size
+    return max(total / gap.shape[0], substrate.contact_modulus * math.pi / size)
+
+
+def add_uniform(z, gr, k_u, reach, work):
+    """The preconditioned gradient with its uniform block: ``z + mean(gr)/k_u``, that shift
+    at most ``reach`` (length) in magnitude. ``z`` is the block preconditioner's of the
+    mean-free ``gr - mean(gr)`` (a block-diagonal split, positive definite), and its
+    ``K z`` holds for the sum (``K`` has no uniform mode).
+
+    The bound keeps a load far beyond the state's stiffness (out of contact ``k_u`` is
+    the elastic floor ``E* pi / L``, 1e9 E* then asks for a 1e10 a0 step) from a step
+    that only the line search's tiny ``alpha`` can hold, which then stalls every other
+    mode; ``reach`` is the heights' rms (the offset moves by at most that per step
+    before the line search scales it)."""
+    shift = float(work.xp.mean(gr)) / k_u
+    z += max(-reach, min(reach, shift))
+    return z
