@@ -13,9 +13,16 @@ moves in all its modes, the offset with it, and the minimum is the equilibrium t
 CG run instead of a root search over nested solves (:mod:`.load_control`). ``K`` kills the
 uniform mode (rigid), so ``K s`` and ``K w`` are those of the offset-controlled loop; only the
 preconditioner needs a uniform block: ``z += mean(gr) / k_u`` with ``k_u``
-(:func:`uniform_stiffness`) the interaction's mean curvature on its repulsive sites, at least
-the longest wavelength's elastic stiffness ``E* pi / L``. One mode mis-scaled costs conjugate
-gradients about one iteration, so a rough ``k_u`` is enough.
+(:func:`uniform_stiffness`) a fraction of the interaction's mean curvature on its repulsive
+sites, at least the longest wavelength's elastic stiffness ``E* pi / L``; the block
+preconditioner takes the mean-free ``gr - mean(gr)`` (a block-diagonal split).
+
+Cost (iterations, cold from first contact, ``benchmarks/adhesive_load.py``): 1.1-1.9x the
+offset-controlled cold solve ending in the same state at ℓa 0.05 (128², 256²), 1.3-2x at
+ℓa 0.005 up to 64², 2.1-3.5x at 128²-256²: the offset has to travel from first contact
+(about one rms height) while the contacts form one after another, where the offset-
+controlled solve starts at its offset. A warm path step costs 1.0-1.4x an offset step.
+The nested root search it replaces took 10-30x.
 """
 
 from __future__ import annotations
@@ -50,15 +57,23 @@ class FreeMean:
         return offset + shift, base + shift
 
 
+#: ``k_u`` is this fraction of the mean repulsive curvature: the sites' springs act in
+#: series with the substrate, so the contact stiffness is below their mean (measured: 11x
+#: below at 128², ℓa 0.005, 1.2x at ℓa 0.05); cold load control from first contact, 128²
+#: and 256², ℓa 0.005 and 0.05: 1.0 -> 105/118/214/163/136 iterations, 0.3 -> 92/112/196/
+#: 143/120, 0.1 -> 94/128/216/164/142.
+UNIFORM_FRACTION = 0.3
+
+
 def uniform_stiffness(interaction, gap, substrate, work) -> float:
-    """``k_u`` (pressure/length): the mean of ``max(V''(g), 0)`` over the grid, at least
-    ``E* pi / max(L)`` (module docstring)."""
+    """``k_u`` (pressure/length): :data:`UNIFORM_FRACTION` of the mean of ``max(V''(g), 0)``
+    over the grid, at least ``E* pi / max(L)`` (module docstring)."""
     xp = work.xp
     near = work.interacting(gap, interaction.cutoff)
     curvature = interaction.curvature(gap if near is None else gap[near])
     total = float(xp.sum(xp.where(curvature > 0, curvature, 0.0)))
     size = max(substrate.shape) * substrate.pixel_size
-    return max(total / gap.shape[0], substrate.contact_modulus * math.pi / size)
+    return max(UNIFORM_FRACTION * total / gap.shape[0], substrate.contact_modulus * math.pi / size)
 
 
 def add_uniform(z, gr, k_u, reach, work):

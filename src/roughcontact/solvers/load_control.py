@@ -1,5 +1,18 @@
 r"""Load control for adhesive laws: find the offset whose equilibrium carries the load.
 
+For the smooth solver on NumPy heights, a periodic substrate with a rigid mean and a load
+within :data:`ONE_MINIMISATION_LOADS` physical pressure scales, the load goes inside the one
+minimisation (:mod:`._free_mean`: the uniform mode of the gap is free and its force is the
+load not carried): the cost of an offset-controlled solve (1.1-2.3x cold, 1.0-1.4x a warm
+path step, against 10-30x for the search below: benchmarks/README.md). Where that fails
+(beyond the pull-off force, a non-finite state), and for every other case, the root search
+over nested solves below.
+
+Why the nested search cost 10-30x (measured, 128²-256², ℓa 0.005 and 0.05, load 1e-3 and
+0): 16-30 inner solves per load (about 9 while the bracket's step doubles from 0.01 rms,
+then 7-21 of regula falsi to the load's tolerance tol·E*), each 25-180 iterations although
+warm-started, because a change of the offset perturbs every contact at once.
+
 Under load control the offset ``d`` is the unknown conjugate to the load: on a stable
 branch the mean pressure :math:`\bar p(d)` of the displacement-controlled equilibrium
 decreases monotonically with ``d``, so the state with :math:`\bar p = N/A_0` is the root
@@ -14,6 +27,11 @@ tolerance of the inner solves. Laws whose force is discontinuous (Maugis–Dugda
 :math:`\bar p(d)` jump by :math:`\sigma_0 a_0^2/A_0` whenever a site crosses the end of
 the cohesive zone, so on a grid some loads are carried by no state: they are reported
 as not converged, and displacement control is the way to follow such a law.
+
+The search never goes below the offset where the law's repulsion is the load plus ten
+physical pressure scales (full contact at that load, :func:`.adhesive_rules.lowest_smooth_offset`):
+doubling steps once jumped from an adhesive state at d = 1.12 to d = -0.16, a runaway of
+uniform p = 3.7e13 E*, reported as "stalled" (128², ℓa 0.05, load 1e-3).
 """
 
 from __future__ import annotations
@@ -29,6 +47,12 @@ from .result import SolveStatus
 from .roots import false_position, illinois
 
 __all__ = ["solve_at_load"]
+
+
+#: The load inside the one minimisation up to this many physical pressure scales
+#: (:mod:`.adhesive_rules`); beyond (1e9 E*: 3300 iterations there, ~600 by the nested
+#: search, which starts at full contact at the load) the nested root search.
+ONE_MINIMISATION_LOADS = 100.0
 
 
 def _one_minimisation(minimize, heights, substrate) -> bool:
@@ -109,7 +133,9 @@ def solve_at_load(
         d_a = float(initial.offset)
     else:
         d_a = stats["max"] + (interaction.equilibrium_distance or 0.0)  # None: hard core
-    if _one_minimisation(minimize, h, substrate):
+    if _one_minimisation(minimize, h, substrate) and abs(load) <= ONE_MINIMISATION_LOADS * (
+        physical_pressure_scale(to_numpy(h), substrate, interaction)
+    ):
         # the load inside the one minimisation (:mod:`._free_mean`): the cost of an
         # offset-controlled solve; the nested search below only where it fails
         with checked_heights(heights, stats), carrying(load):
