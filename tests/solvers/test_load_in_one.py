@@ -69,3 +69,14 @@ def test_beyond_pull_off_is_still_detached():
     h, sub, law = _problem(32, 0.005)
     res = rc.solve(h, sub, law, load=-1.0)
     assert res.status is SolveStatus.DETACHED and not res.converged
+
+
+def test_the_uniform_block_rules():
+    rules = importlib.import_module("roughcontact.solvers.adhesive_rules")
+    # the elastic floor E* pi / L out of contact, the curvature's fraction in contact
+    assert rules.uniform_stiffness(0.0, 2.0, 64.0) == pytest.approx(2.0 * np.pi / 64.0)
+    assert rules.uniform_stiffness(10.0, 1.0, 64.0) == pytest.approx(rules.UNIFORM_FRACTION * 10)
+    # the shift mean(gr)/k_u, bounded by the reach either way
+    assert rules.uniform_shift(0.01, 0.1, 0.5) == pytest.approx(0.1)
+    assert rules.uniform_shift(1e9, 0.05, 0.5) == 0.5
+    assert rules.uniform_shift(-1e9, 0.05, 0.5) == -0.5

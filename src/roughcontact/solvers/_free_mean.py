@@ -27,7 +27,7 @@ The nested root search it replaces took 10-30x.
 
 from __future__ import annotations
 
-import math
+from . import adhesive_rules as rules
 
 __all__ = ["FreeMean", "add_uniform", "uniform_stiffness"]
 
@@ -57,23 +57,15 @@ class FreeMean:
         return offset + shift, base + shift
 
 
-#: ``k_u`` is this fraction of the mean repulsive curvature: the sites' springs act in
-#: series with the substrate, so the contact stiffness is below their mean (measured: 11x
-#: below at 128², ℓa 0.005, 1.2x at ℓa 0.05); cold load control from first contact, 128²
-#: and 256², ℓa 0.005 and 0.05: 1.0 -> 105/118/214/163/136 iterations, 0.3 -> 92/112/196/
-#: 143/120, 0.1 -> 94/128/216/164/142.
-UNIFORM_FRACTION = 0.3
-
-
 def uniform_stiffness(interaction, gap, substrate, work) -> float:
-    """``k_u`` (pressure/length): :data:`UNIFORM_FRACTION` of the mean of ``max(V''(g), 0)``
-    over the grid, at least ``E* pi / max(L)`` (module docstring)."""
+    """``k_u`` (pressure/length) of the state ``gap`` by the shared rule
+    :func:`.adhesive_rules.uniform_stiffness` (module docstring)."""
     xp = work.xp
     near = work.interacting(gap, interaction.cutoff)
     curvature = interaction.curvature(gap if near is None else gap[near])
     total = float(xp.sum(xp.where(curvature > 0, curvature, 0.0)))
     size = max(substrate.shape) * substrate.pixel_size
-    return max(UNIFORM_FRACTION * total / gap.shape[0], substrate.contact_modulus * math.pi / size)
+    return rules.uniform_stiffness(total / gap.shape[0], substrate.contact_modulus, size)
 
 
 def add_uniform(z, gr, k_u, reach, work):
@@ -82,11 +74,6 @@ def add_uniform(z, gr, k_u, reach, work):
     mean-free ``gr - mean(gr)`` (a block-diagonal split, positive definite), and its
     ``K z`` holds for the sum (``K`` has no uniform mode).
 
-    The bound keeps a load far beyond the state's stiffness (out of contact ``k_u`` is
-    the elastic floor ``E* pi / L``, 1e9 E* then asks for a 1e10 a0 step) from a step
-    that only the line search's tiny ``alpha`` can hold, which then stalls every other
-    mode; ``reach`` is the heights' rms (the offset moves by at most that per step
-    before the line search scales it)."""
-    shift = float(work.xp.mean(gr)) / k_u
-    z += max(-reach, min(reach, shift))
+    The shift and its bound are :func:`.adhesive_rules.uniform_shift`'s."""
+    z += rules.uniform_shift(float(work.xp.mean(gr)), k_u, reach)
     return z
