@@ -40,3 +40,19 @@ def test_load_control_reaches_full_contact():
     res = rc.solve(H, SUB, LAW, load=0.3)
     _check_equilibrium(res, 0.3)
     assert res.repulsive_area == 1.0
+
+
+@pytest.mark.parametrize("periodic", [True, False], ids=["periodic", "free-boundary"])
+def test_cold_tensile_load_finds_the_adhered_state(periodic):
+    # a tensile load below the pull-off force: from first contact the surfaces used to be
+    # opened up and reported detached; now into contact at load 0 first, then pulled
+    n = 64
+    h = rc.self_affine((n, n), hurst=0.8, rms_slope=0.1, short_cutoff=4, seed=7)
+    sub = rc.Substrate((n, n), periodic=periodic)
+    law = rc.SmoothLJ93.from_adhesion_length(0.005)
+    res = rc.solve(h, sub, law, load=-1e-3)
+    assert res.status is SolveStatus.CONVERGED, res.message
+    assert abs(res.load + 1e-3) <= res.tol and res.repulsive_area > 0.1
+    assert float(np.abs(res.pressure).max()) < 1.0
+    beyond = rc.solve(h, sub, law, load=-0.05)  # far beyond the pull-off force
+    assert beyond.status is SolveStatus.DETACHED and not beyond.converged

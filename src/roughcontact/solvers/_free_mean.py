@@ -27,6 +27,7 @@ The nested root search it replaces took 10-30x.
 
 from __future__ import annotations
 
+from .._validate import ParameterError
 from . import adhesive_rules as rules
 
 __all__ = ["FreeMean", "add_uniform", "uniform_stiffness"]
@@ -38,7 +39,20 @@ class FreeMean:
     def __init__(self, load, interaction, substrate, heights, work):
         self.load, self.law, self.substrate, self.work = float(load), interaction, substrate, work
         self.reach = max(float(work.xp.std(heights)), substrate.pixel_size)
-        self.k_u = None
+        self.k_u, self.detached = None, None
+
+    @classmethod
+    def of(cls, load, interaction, substrate, heights, work, periodic_rigid):
+        """The free mode for ``load`` (None: offset control, no free mode); it needs NumPy
+        (``work.inplace``) and a periodic substrate with a rigid mean."""
+        if load is None:
+            return None
+        if not (periodic_rigid and work.inplace):
+            raise ParameterError(
+                "load in minimize_energy needs NumPy heights on a periodic substrate with a "
+                "rigid mean (else solve(load=...) takes the nested search)"
+            )
+        return cls(load, interaction, substrate, heights, work)
 
     def mean_free(self, gr):
         """``gr - mean(gr)``: what the block preconditioner takes."""
@@ -46,7 +60,15 @@ class FreeMean:
 
     def add(self, z, gr, gap, it, refresh_every):
         """``z`` with its uniform block (:func:`add_uniform`); ``k_u`` refreshed with the
-        preconditioner's stiff sites."""
+        preconditioner's stiff sites. None, with ``detached`` the message, once a tensile
+        load has pulled every site beyond the law's cutoff (no force left to balance it:
+        the surfaces separate for good)."""
+        if self.load < 0 and float(self.work.xp.min(gap)) >= self.law.cutoff:
+            self.detached = (
+                f"no state carries load {self.load:g}: every gap is beyond the interaction's "
+                f"range at iteration {it} (beyond the pull-off force)"
+            )
+            return None
         if self.k_u is None or it % refresh_every == 1:
             self.k_u = uniform_stiffness(self.law, gap, self.substrate, self.work)
         return add_uniform(z, gr, self.k_u, self.reach, self.work)

@@ -138,16 +138,36 @@ def solve_at_load(
     ):
         # the load inside the one minimisation (:mod:`._free_mean`): the cost of an
         # offset-controlled solve; the nested search below only where it fails
-        with checked_heights(heights, stats), carrying(load):
-            res = minimize(
-                heights, substrate, interaction, offset=d_a, initial=initial, tol=tol,
-                max_iter=max_iter, callback=callback, dtype=dtype, load=load,
-            )  # fmt: skip
-        total["it"] += res.iterations
+        def run(target, start, init):
+            with checked_heights(heights, stats), carrying(target):
+                res = minimize(
+                    heights, substrate, interaction, offset=start, initial=init, tol=tol,
+                    max_iter=max_iter, callback=callback, dtype=dtype, load=target,
+                )  # fmt: skip
+            total["it"] += res.iterations
+            return res
+
+        res = run(load, d_a, initial)
+        if res.status is SolveStatus.DETACHED and initial is None:
+            # a cold tensile load pulls a barely touching surface off: into contact at
+            # load 0 first (the jump in), then pulled to the load from that state
+            first = run(0.0, d_a, None)
+            if first.converged:
+                res = run(load, first.offset, first)
         if res.converged and abs(res.load - load) <= load_tol:
             return finish(res, True, "converged (load control)")
-        if res.status in (SolveStatus.CALLBACK, SolveStatus.ITERATION_LIMIT, SolveStatus.STALLED):
+        stops = (SolveStatus.CALLBACK, SolveStatus.ITERATION_LIMIT, SolveStatus.STALLED,
+                 SolveStatus.DETACHED)  # fmt: skip
+        if res.status in stops:
             return finish(res, False, res.message)
+    if load < 0 and initial is None and not states:
+        # cold and tensile: the nested search would open up from first contact and find
+        # the surfaces detached; the state at load 0 (the jump into contact) first
+        first = solve_at_load(minimize, heights, substrate, interaction, load=0.0, initial=None,
+                              tol=tol, max_iter=max_iter, callback=callback)  # fmt: skip
+        total["it"] += first.iterations
+        if first.converged:
+            d_a, states[first.offset] = first.offset, first
     res_a = evaluate(d_a)
     f_a = res_a.load - load
     if not res_a.converged or abs(f_a) <= load_tol:

@@ -306,9 +306,7 @@ def minimize_energy(
     # the sites `near` (None: every site) where it can be nonzero
     cutoff = interaction.cutoff
     near = work.interacting(gap, cutoff)
-    free = None if load is None else FreeMean(load, interaction, substrate, h, work)
-    if free and not (rigid and patch is None and work.inplace):  # the uniform mode free
-        raise ParameterError("load in minimize_energy needs NumPy, periodic, rigid-mean input")
+    free = FreeMean.of(load, interaction, substrate, h, work, rigid and patch is None)
     # a warm start refreshes the block preconditioner at once, except on a free boundary
     # (module docstring)
     refresh_at_once = initial is not None and patch is None
@@ -421,7 +419,9 @@ def minimize_energy(
             rigid,
             out=z, work=work, fast=fast, result=fast_result, background=overlap and not free,
         )  # fmt: skip
-        z = free.add(z, gr, gap, it, refresh_every) if free else z
+        if free and (z := free.add(z, gr, gap, it, refresh_every)) is None:
+            status, message = SolveStatus.DETACHED, free.detached
+            break
         if work.inplace:
             gz = _dot(gr, z)
             # PR+ (gz_old is 0 only at the rounding floor of a deeply compressed state)
