@@ -80,3 +80,22 @@ def test_the_uniform_block_rules():
     assert rules.uniform_shift(0.01, 0.1, 0.5) == pytest.approx(0.1)
     assert rules.uniform_shift(1e9, 0.05, 0.5) == 0.5
     assert rules.uniform_shift(-1e9, 0.05, 0.5) == -0.5
+
+
+@pytest.mark.parametrize("load", [1e-3, 0.0])
+def test_hard_core_load_in_one_minimisation(load):
+    # the bounded solver with mu = -load and a free mean: the nested search took 150-550
+    h, sub, _ = _problem(64, 0.05)
+    law = rc.Exponential(work_of_adhesion=0.05, range=1.0)
+    res = rc.solve(h, sub, law, load=load)
+    assert res.converged and abs(res.load - load) <= res.tol, res.message
+    same = rc.solve(h, sub, law, offset=res.offset)
+    assert same.converged and np.abs(same.gap - res.gap).max() < 1e-6
+    assert res.iterations <= 2.0 * same.iterations, (res.iterations, same.iterations)
+    bounded = importlib.import_module("roughcontact.solvers.bounded")
+    nested = load_control.solve_at_load(
+        functools.partial(bounded.minimize_energy_bounded), h, sub, law, load=load,
+        initial=None, tol=None, max_iter=5000, callback=None,
+    )  # fmt: skip
+    assert nested.converged and nested.offset == pytest.approx(res.offset, abs=1e-6)
+    assert nested.iterations > 3 * res.iterations

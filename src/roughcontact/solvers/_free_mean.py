@@ -40,6 +40,7 @@ class FreeMean:
         self.load, self.law, self.substrate, self.work = float(load), interaction, substrate, work
         self.reach = max(float(work.xp.std(heights)), substrate.pixel_size)
         self.k_u, self.detached = None, None
+        self.peak = rules.attraction_peak_gap(interaction) if self.load < 0 else 0.0
 
     @classmethod
     def of(cls, load, interaction, substrate, heights, work, periodic_rigid):
@@ -63,15 +64,38 @@ class FreeMean:
         preconditioner's stiff sites. None, with ``detached`` the message, once a tensile
         load has pulled every site beyond the law's cutoff (no force left to balance it:
         the surfaces separate for good)."""
-        if self.load < 0 and float(self.work.xp.min(gap)) >= self.law.cutoff:
-            self.detached = (
-                f"no state carries load {self.load:g}: every gap is beyond the interaction's "
-                f"range at iteration {it} (beyond the pull-off force)"
-            )
+        if self._lost(gap, it):
             return None
         if self.k_u is None or it % refresh_every == 1:
             self.k_u = uniform_stiffness(self.law, gap, self.substrate, self.work)
         return add_uniform(z, gr, self.k_u, self.reach, self.work)
+
+    def add_on(self, z, rr, gap, free, it):
+        """The bounded solver's uniform block (:mod:`.bounded`): ``z + shift`` with shift
+        the mean of ``rr`` over the ``free`` sites over ``k_u`` (bounded; on the wall's
+        active face the caller zeroes it). None, with ``detached``, as in :meth:`add`."""
+        xp = self.work.xp
+        if self._lost(gap, it):
+            return None
+        if self.k_u is None or it % 10 == 1:
+            self.k_u = uniform_stiffness(self.law, gap, self.substrate, self.work)
+        mean = float(xp.sum(rr)) / max(int(xp.count_nonzero(free)), 1)  # rr is 0 off them
+        return z + float(rules.uniform_shift(mean, self.k_u, self.reach))
+
+    def _lost(self, gap, it) -> bool:
+        """Whether the tensile load is lost (:func:`.adhesive_rules.tension_lost`); then
+        ``detached`` says so."""
+        if self.load >= 0:
+            return False
+        min_gap = float(self.work.xp.min(gap))
+        if not rules.tension_lost(self.law, self.load, min_gap, self.peak):
+            return False
+        self.detached = (
+            f"no state carries load {self.load:g}: at iteration {it} the surfaces separate "
+            f"(smallest gap {min_gap:.3g}, beyond the attraction's peak, where no site pulls "
+            "that hard): beyond the pull-off force"
+        )
+        return True
 
     def moved(self, offset, gap, base):
         """The offset and ``base`` (``d - h``) of the final gap: moved with its mean."""
@@ -97,5 +121,5 @@ def add_uniform(z, gr, k_u, reach, work):
     ``K z`` holds for the sum (``K`` has no uniform mode).
 
     The shift and its bound are :func:`.adhesive_rules.uniform_shift`'s."""
-    z += rules.uniform_shift(float(work.xp.mean(gr)), k_u, reach)
+    z += float(rules.uniform_shift(float(work.xp.mean(gr)), k_u, reach))
     return z

@@ -55,6 +55,7 @@ import numpy as np
 __all__ = [
     "FLOOR_ULPS",
     "EPS64",
+    "attraction_peak_gap",
     "FULL_CONTACT_MARGIN",
     "RUNAWAY_RATIO",
     "carrying",
@@ -64,6 +65,7 @@ __all__ = [
     "lowest_smooth_offset",
     "physical_pressure_scale",
     "rms_slope",
+    "tension_lost",
     "uniform_shift",
     "uniform_stiffness",
 ]
@@ -124,6 +126,31 @@ def carrying(load):
         yield
     finally:
         _LOAD.reset(token)
+
+
+def attraction_peak_gap(law) -> float:
+    """The gap (length) of the law's largest tension (0 if it has none): beyond it the
+    attraction falls with the gap (the laws here: one well)."""
+    gaps = _sample_gaps(law)
+    with np.errstate(all="ignore"):
+        p = np.asarray(law.pressure(gaps), dtype=float)
+    p = np.where(np.isfinite(p), p, np.inf)
+    return float(gaps[int(np.argmin(p))]) if p.min() < 0 else 0.0
+
+
+def tension_lost(law, load, min_gap, peak_gap) -> bool:
+    """Whether a tensile ``load`` (< 0, pressure) can no longer be carried as the surfaces
+    separate: every gap beyond the law's range, or beyond its attraction's peak
+    (``peak_gap``) with less tension at the smallest gap ``min_gap`` than ``-load`` (no
+    site can then pull harder, and separating further pulls less)."""
+    if load >= 0:
+        return False
+    if min_gap >= law.cutoff:
+        return True
+    if min_gap <= peak_gap:
+        return False
+    tension = -float(np.asarray(law.pressure(np.array([min_gap], dtype=float)))[0])
+    return tension < -load
 
 
 def physical_pressure_scale(heights, substrate, law) -> float:

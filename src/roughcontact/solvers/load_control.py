@@ -49,20 +49,22 @@ from .roots import false_position, illinois
 __all__ = ["solve_at_load"]
 
 
-#: The load inside the one minimisation up to this many physical pressure scales
+#: The load inside the one minimisation (a law without hard core) up to this many physical
+#: pressure scales
 #: (:mod:`.adhesive_rules`); beyond (1e9 E*: 3300 iterations there, ~600 by the nested
 #: search, which starts at full contact at the load) the nested root search.
 ONE_MINIMISATION_LOADS = 100.0
 
 
 def _one_minimisation(minimize, heights, substrate) -> bool:
-    """Whether ``minimize`` takes the load itself (:mod:`._free_mean`): the smooth solver on
-    NumPy heights, a periodic substrate with a rigid mean."""
+    """Whether ``minimize`` takes the load itself (:mod:`._free_mean`): the smooth or the
+    bounded solver on NumPy heights, a periodic substrate with a rigid mean."""
+    from .bounded import minimize_energy_bounded
     from .smooth import minimize_energy
 
     periodic = tuple(substrate.work_shape) == tuple(substrate.shape)
-    return (minimize is minimize_energy and is_numpy_array(heights) and periodic
-            and substrate.rigid_mean)  # fmt: skip
+    return (minimize in (minimize_energy, minimize_energy_bounded) and is_numpy_array(heights)
+            and periodic and substrate.rigid_mean)  # fmt: skip
 
 
 def solve_at_load(
@@ -133,8 +135,10 @@ def solve_at_load(
         d_a = float(initial.offset)
     else:
         d_a = stats["max"] + (interaction.equilibrium_distance or 0.0)  # None: hard core
-    if _one_minimisation(minimize, h, substrate) and abs(load) <= ONE_MINIMISATION_LOADS * (
-        physical_pressure_scale(to_numpy(h), substrate, interaction)
+    if _one_minimisation(minimize, h, substrate) and (
+        interaction.hard_core  # full contact on the wall carries any load: no runaway
+        or abs(load) <= ONE_MINIMISATION_LOADS
+        * physical_pressure_scale(to_numpy(h), substrate, interaction)
     ):
         # the load inside the one minimisation (:mod:`._free_mean`): the cost of an
         # offset-controlled solve; the nested search below only where it fails
@@ -155,7 +159,10 @@ def solve_at_load(
             if first.converged:
                 res = run(load, first.offset, first)
         if res.converged and abs(res.load - load) <= load_tol:
-            return finish(res, True, "converged (load control)")
+            full = interaction.hard_core and res.repulsive_area >= 1.0
+            return finish(res, True, "converged (load control)" + (
+                "; full contact: every site on the wall, whose reaction carries the load at "
+                "offset mean(heights)" if full else ""))  # fmt: skip
         stops = (SolveStatus.CALLBACK, SolveStatus.ITERATION_LIMIT, SolveStatus.STALLED,
                  SolveStatus.DETACHED)  # fmt: skip
         if res.status in stops:
