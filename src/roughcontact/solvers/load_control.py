@@ -1,12 +1,13 @@
 r"""Load control for adhesive laws: find the offset whose equilibrium carries the load.
 
-For the smooth solver on NumPy heights, a periodic substrate with a rigid mean and a load
-within :data:`ONE_MINIMISATION_LOADS` physical pressure scales, the load goes inside the one
-minimisation (:mod:`._free_mean`: the uniform mode of the gap is free and its force is the
-load not carried): the cost of an offset-controlled solve (1.1-2.3x cold, 1.0-1.4x a warm
-path step, against 10-30x for the search below: benchmarks/README.md). Where that fails
-(beyond the pull-off force, a non-finite state), and for every other case, the root search
-over nested solves below.
+For the smooth and the bounded solver on NumPy heights, a periodic substrate with a rigid
+mean (and for a law without hard core a load within :data:`ONE_MINIMISATION_LOADS` physical
+pressure scales), the load goes inside the one minimisation (:mod:`._free_mean`: the uniform
+mode of the gap is free and its force is the load not carried; on the wall the multiplier is
+the load): about the cost of an offset-controlled solve (1.1-3x cold, 1.0-1.5x a warm path
+step, against 10-30x for the search below: benchmarks/README.md). Where that fails (a
+non-finite state, a failed line search), and for every other case, the root search over
+nested solves below.
 
 Why the nested search cost 10-30x (measured, 128²-256², ℓa 0.005 and 0.05, load 1e-3 and
 0): 16-30 inner solves per load (about 9 while the bracket's step doubles from 0.01 rms,
