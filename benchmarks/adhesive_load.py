@@ -17,6 +17,7 @@ Counts are the figures to compare (the machine is shared); seconds are printed b
 them. Run alone or from ``adhesive.py --load-control`` (the same rows beside the peers).
 
     python benchmarks/adhesive_load.py --sizes 128 256 --adhesion-lengths 0.005 0.05 --nested
+    python benchmarks/adhesive_load.py --law exponential --sizes 128 --nested  # a hard core
 """
 
 from __future__ import annotations
@@ -35,17 +36,29 @@ def issue_surface(n: int) -> np.ndarray:
     return rc.self_affine((n, n), hurst=0.8, rms_slope=0.1, short_cutoff=4, seed=7)
 
 
+def make_law(name: str, la: float):
+    """``lj93smooth``: the paper's wall at adhesion length ``la``; ``exponential``: the
+    hard-core Exponential law with work of adhesion ``la`` E* a0 and range a0."""
+    import roughcontact as rc
+
+    if name == "exponential":
+        return rc.Exponential(work_of_adhesion=la, range=1.0)
+    return rc.SmoothLJ93.from_adhesion_length(la)
+
+
 def _nested(h, sub, law, load, tol, max_iter):
     """Load control by the root search over nested offset solves (the method before)."""
     import importlib
 
-    smooth = importlib.import_module("roughcontact.solvers.smooth")
+    module = "bounded" if law.hard_core else "smooth"
+    solver = importlib.import_module(f"roughcontact.solvers.{module}")
+    one = solver.minimize_energy_bounded if law.hard_core else solver.minimize_energy
     load_control = importlib.import_module("roughcontact.solvers.load_control")
     inner = {"solves": 0}
 
     def minimize(*args, **kwargs):
         inner["solves"] += 1
-        return smooth.minimize_energy(*args, **kwargs)
+        return one(*args, **kwargs)
 
     res = load_control.solve_at_load(
         functools.partial(minimize), h, sub, law, load=load, initial=None, tol=tol,
@@ -68,7 +81,8 @@ COLD_HEADER = (
 )
 
 
-def cold_cases(sizes, adhesion_lengths, loads, tol, max_iter, nested, log=print):
+def cold_cases(sizes, adhesion_lengths, loads, tol, max_iter, nested, log=print,
+               law_name="lj93smooth"):
     """The issue's cold cases: one dict per (n, la, load)."""
     import roughcontact as rc
 
@@ -78,9 +92,9 @@ def cold_cases(sizes, adhesion_lengths, loads, tol, max_iter, nested, log=print)
         h = issue_surface(n)
         sub = rc.Substrate((n, n))
         for la in adhesion_lengths:
-            law = rc.SmoothLJ93.from_adhesion_length(la)
+            law = make_law(law_name, la)
             for load in loads:
-                log(f"# n={n} la={la:g} load={load:g}")
+                log(f"# n={n} {law_name} la={la:g} load={load:g}")
                 t0 = time.perf_counter()
                 res = rc.solve(h, sub, law, load=load, tol=tol, max_iter=max_iter)
                 t_load = time.perf_counter() - t0
@@ -91,7 +105,8 @@ def cold_cases(sizes, adhesion_lengths, loads, tol, max_iter, nested, log=print)
                 gap = float(np.abs(same.gap - res.gap).max())
                 log(_row("  offset (same d)", same, t_off, f"max|dgap| {gap:.1e}"))
                 row = dict(
-                    n=n, adhesion_length=la, load=load, load_iterations=res.iterations,
+                    n=n, law=law_name, adhesion_length=la, load=load,
+                    load_iterations=res.iterations,
                     load_seconds=t_load, load_status=res.status.value, load_reached=res.load,
                     repulsive_area=res.repulsive_area, offset=res.offset,
                     max_pressure=float(np.abs(res.pressure).max()),
@@ -111,7 +126,7 @@ def cold_cases(sizes, adhesion_lengths, loads, tol, max_iter, nested, log=print)
     return out
 
 
-def paths(sizes, adhesion_lengths, path_loads, tol, max_iter, log=print):
+def paths(sizes, adhesion_lengths, path_loads, tol, max_iter, log=print, law_name="lj93smooth"):
     """Load- vs offset-controlled paths through the same states: one dict per (n, la)."""
     import roughcontact as rc
 
@@ -120,7 +135,7 @@ def paths(sizes, adhesion_lengths, path_loads, tol, max_iter, log=print):
         h = issue_surface(n)
         sub = rc.Substrate((n, n))
         for la in adhesion_lengths:
-            law = rc.SmoothLJ93.from_adhesion_length(la)
+            law = make_law(law_name, la)
             t0 = time.perf_counter()
             by_load = rc.approach_retract(h, sub, law, loads=path_loads, retract=False,
                                           tol=tol, max_iter=max_iter)  # fmt: skip
@@ -134,7 +149,7 @@ def paths(sizes, adhesion_lengths, path_loads, tol, max_iter, log=print):
             its_o = [int(i) for i in by_offset["iterations"].values]
             med_l, med_o = float(np.median(its_l[1:])), float(np.median(its_o[1:]))
             row = dict(
-                n=n, adhesion_length=la, loads=[float(x) for x in path_loads],
+                n=n, law=law_name, adhesion_length=la, loads=[float(x) for x in path_loads],
                 load_iterations=its_l, offset_iterations=its_o, load_seconds=t_load,
                 offset_seconds=t_off, median_warm_load=med_l, median_warm_offset=med_o,
                 ratio=med_l / max(med_o, 1.0),
@@ -142,7 +157,7 @@ def paths(sizes, adhesion_lengths, path_loads, tol, max_iter, log=print):
                 load_error=float(np.max(np.abs(by_load["load"].values - path_loads))),
             )  # fmt: skip
             log(
-                f"# path n={n} la={la:g}: loads {path_loads[0]:g}..{path_loads[-1]:g} "
+                f"# path n={n} {law_name} la={la:g}: loads {path_loads[0]:g}..{path_loads[-1]:g} "
                 f"({len(path_loads)} steps): load-controlled its {its_l} ({t_load:.2f} s), "
                 f"offset-controlled its {its_o} ({t_off:.2f} s); median warm step "
                 f"{med_l:.0f} vs {med_o:.0f} = {row['ratio']:.2f}x; converged "
@@ -163,15 +178,17 @@ def add_arguments(ap, prefix=""):
                     help="also time the nested root search (the method before)")  # fmt: skip
 
 
-def run(sizes, adhesion_lengths, loads, path_loads, tol, max_iter, nested, log=print):
+def run(sizes, adhesion_lengths, loads, path_loads, tol, max_iter, nested, log=print,
+        law_name="lj93smooth"):
     """Both parts; a 16² path first (untimed) loads what a first path imports."""
     import roughcontact as rc
 
     h = issue_surface(16)
     law = rc.SmoothLJ93.from_adhesion_length(0.05)
     rc.approach_retract(h, rc.Substrate((16, 16)), law, loads=[0.0, 1e-3], retract=False)
-    cold = cold_cases(sizes, adhesion_lengths, loads, tol, max_iter, nested, log)
-    path = paths(sizes, adhesion_lengths, np.asarray(path_loads, dtype=float), tol, max_iter, log)
+    cold = cold_cases(sizes, adhesion_lengths, loads, tol, max_iter, nested, log, law_name)
+    path_loads = np.asarray(path_loads, dtype=float)
+    path = paths(sizes, adhesion_lengths, path_loads, tol, max_iter, log, law_name)
     return dict(cold=cold, paths=path)
 
 
@@ -181,11 +198,14 @@ def main(argv=None) -> int:
     ap.add_argument("--adhesion-lengths", type=float, nargs="+", default=[0.005, 0.05])
     ap.add_argument("--tol", type=float, default=1e-8)
     ap.add_argument("--max-iter", type=int, default=5000)
+    ap.add_argument("--law", choices=("lj93smooth", "exponential"), default="lj93smooth",
+                    help="exponential: hard core, work of adhesion la E* a0, range a0")  # fmt: skip
     ap.add_argument("--json", metavar="OUT")
     add_arguments(ap)
     args = ap.parse_args(argv)
     out = run(args.sizes, args.adhesion_lengths, args.loads, args.path_loads, args.tol,
-              args.max_iter, args.nested, log=lambda s: print(s, flush=True))  # fmt: skip
+              args.max_iter, args.nested, log=lambda s: print(s, flush=True),
+              law_name=args.law)  # fmt: skip
     if args.json:
         import json
 

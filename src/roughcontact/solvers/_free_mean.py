@@ -72,15 +72,17 @@ class FreeMean:
 
     def add_on(self, z, rr, gap, free, it):
         """The bounded solver's uniform block (:mod:`.bounded`): ``z + shift`` with shift
-        the mean of ``rr`` over the ``free`` sites over ``k_u`` (bounded; on the wall's
-        active face the caller zeroes it). None, with ``detached``, as in :meth:`add`."""
+        the mean of ``rr`` over the ``free`` sites over ``k_u``
+        (:func:`.adhesive_rules.wall_uniform_stiffness`; bounded; on the wall's active face
+        the caller zeroes it). None, with ``detached``, as in :meth:`add`."""
         xp = self.work.xp
         if self._lost(gap, it):
             return None
-        if self.k_u is None or it % 10 == 1:
-            self.k_u = uniform_stiffness(self.law, gap, self.substrate, self.work)
-        mean = float(xp.sum(rr)) / max(int(xp.count_nonzero(free)), 1)  # rr is 0 off them
-        return z + float(rules.uniform_shift(mean, self.k_u, self.reach))
+        n_free, sub = int(xp.count_nonzero(free)), self.substrate
+        k_u = rules.wall_uniform_stiffness(1.0 - n_free / free.shape[0], sub.self_stiffness,
+                                           sub.contact_modulus, max(sub.shape) * sub.pixel_size)
+        mean = float(xp.sum(rr)) / max(n_free, 1)  # rr is 0 off the free sites
+        return z + float(rules.uniform_shift(mean, k_u, self.reach))
 
     def _lost(self, gap, it) -> bool:
         """Whether the tensile load is lost (:func:`.adhesive_rules.tension_lost`); then

@@ -68,6 +68,7 @@ __all__ = [
     "tension_lost",
     "uniform_shift",
     "uniform_stiffness",
+    "wall_uniform_stiffness",
 ]
 
 #: A float64 residual within this many floors ``eps p / E*`` is "at the rounding floor".
@@ -254,6 +255,22 @@ def uniform_stiffness(mean_curvature, contact_modulus, size, xp=np):
     longest wavelength's elastic stiffness ``E* pi / size`` (``size``: the longer side,
     length). One mode mis-scaled costs conjugate gradients about one iteration."""
     return xp.maximum(UNIFORM_FRACTION * mean_curvature, contact_modulus * math.pi / size)
+
+
+#: The bounded solver's ``k_u``: this fraction of the self-stiffness times the fraction of
+#: sites on the wall (the contact pins them; the free sites' curvature is attractive).
+#: Measured, cold load 1e-3 / path steps, Exponential(w = la, range a0), 128² and 256²:
+#: 0 (the elastic floor alone) 31/44/51/74 its, steps 24-26/30-35/40-42/42-53; 0.1
+#: 31/29/46/44, 24-26/20-22/39-42/28-30; 0.3 33/33/41/66; 1.0 72/54/97/93.
+WALL_FRACTION = 0.1
+
+
+def wall_uniform_stiffness(wall_fraction, self_stiffness, contact_modulus, size, xp=np):
+    """``k_u`` (pressure/length) of the bounded solver's uniform block: :data:`WALL_FRACTION`
+    x the fraction of sites on the wall (``wall_fraction``) x the substrate's
+    self-stiffness (pressure/length), at least ``E* pi / size``."""
+    floor = contact_modulus * math.pi / size
+    return xp.maximum(WALL_FRACTION * wall_fraction * self_stiffness, floor)
 
 
 def uniform_shift(mean_gradient, k_u, reach, xp=np):
