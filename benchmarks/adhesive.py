@@ -68,6 +68,7 @@ import time
 from importlib import metadata
 
 import _threads
+import adhesive_load
 import numpy as np
 from adhesive_peers import check_potential, run_adhesion, run_tamaas
 from adhesive_report import (
@@ -375,6 +376,13 @@ def main(argv=None) -> int:
         action="store_true",
         help="also time roughcontact with dtype='float32' (code roughcontact32)",
     )
+    ap.add_argument(
+        "--load-control",
+        action="store_true",
+        help="also the load-controlled cold solves and paths of adhesive_load.py (issue "
+        "surface, --sizes and --adhesion-lengths) after the approach",
+    )
+    adhesive_load.add_arguments(ap, prefix="lc-")
     ap.add_argument("--json", metavar="OUT", help="write all figures to this JSON file")
     args = ap.parse_args(argv)
 
@@ -411,6 +419,11 @@ def main(argv=None) -> int:
         )
         t0 = time.perf_counter()
         out = run(args, log=lambda s: print(s, flush=True))
+        if args.load_control:  # the same process, threads and machine: beside the peers
+            out["load_control"] = adhesive_load.run(
+                args.sizes, args.adhesion_lengths, args.lc_loads, args.lc_path_loads, 1e-8,
+                args.max_iter, args.nested, log=lambda s: print(s, flush=True),
+            )  # fmt: skip
     print("# summary (t/step: median over the steps; Adh/rc, tm/rc: the peer's t/step / ours)")
     print(SUMMARY_HEADER)
     for r in out["summary"]:

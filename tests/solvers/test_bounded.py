@@ -5,14 +5,19 @@ minimised energy), energy bookkeeping along a reversible branch, the non-adhesiv
 wall as the w -> 0 limit, and the DMT pull-off force 2πwR of a sphere.
 """
 
+import functools
+import importlib
+
 import numpy as np
 import pytest
 
 import roughcontact as rc
 from roughcontact.checks import load_work_balance, total_energy
 from roughcontact.interactions import Exponential, MaugisDugdale
-from roughcontact.solvers.bounded import project_feasible
+from roughcontact.solvers.bounded import minimize_energy_bounded, project_feasible
 from roughcontact.theory import maugis_parameter
+
+load_control = importlib.import_module("roughcontact.solvers.load_control")
 
 N = 96
 R = 80.0
@@ -140,9 +145,18 @@ def test_load_control_never_steps_below_the_hard_core_bound():
     res = rc.solve(h, sub, law, load=1e-3, tol=1e-9)
     assert res.converged and res.load == pytest.approx(1e-3, abs=1e-9)
     assert rc.solve(h, sub, law, offset=res.offset, initial=res).load == pytest.approx(1e-3)
-    # more than the contact carries just above mean(h): reported, not an exception
+    # more than the contact carries just above mean(h): full contact, the wall's reaction
+    # carries it at offset mean(h) (the load inside the one minimisation); the nested
+    # search reports it, never an exception
     res = rc.solve(h, sub, law, load=0.5, tol=1e-8)
-    assert not res.converged and "next to mean(heights)" in res.message
+    assert res.converged and res.repulsive_area == 1.0 and "full contact" in res.message
+    assert res.load == pytest.approx(0.5, abs=1e-8) and res.offset == pytest.approx(h.mean())
+    nested = load_control.solve_at_load(
+        functools.partial(minimize_energy_bounded), h, sub, law, load=0.5, initial=None,
+        tol=1e-8, max_iter=5000, callback=None,
+    )  # fmt: skip
+    assert not nested.converged and "next to mean(heights)" in nested.message
+    assert nested.status is rc.SolveStatus.FULL_CONTACT
 
 
 def test_an_offset_change_that_lifts_the_contact_off_the_wall():

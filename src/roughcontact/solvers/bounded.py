@@ -23,6 +23,10 @@ and of the bounded CG of Bugnicourt et al. (Tribol. Lett. 66, 29 (2018)):
   step (Bertsekas, IEEE Trans. Autom. Control 21, 174 (1976)), which lowers it for a short
   enough step: a preconditioned direction, once projected, need not descend.
 
+Under load control (``load``, NumPy, periodic, rigid mean) the multiplier is the load,
+``μ = -N``, and the mean of ``w`` (the offset) is free, with a uniform block in the
+preconditioner (:mod:`._free_mean`): one minimisation instead of nested solves.
+
 Convergence measure (``residual``): the largest force imbalance on a free site,
 ``max |K w - p_int(g) - μ| / E*``; sites on the active face satisfy the contact
 conditions by construction. Cost: two FFT convolutions per iteration, the
@@ -64,6 +68,7 @@ from .._backend import (
 )
 from ._blocks import Schedule
 from ._bounded_steps import _DeviceSteps
+from ._free_mean import FreeMean
 from ._inplace import Workspace
 from ._projection import _direction_on_device, _projected_gradient_step, project_feasible
 from .fourier import (
@@ -98,8 +103,9 @@ def minimize_energy_bounded(
     restart_every=200,
     device=None,
     dtype=None,
+    load=None,
 ):
-    """Solve a hard-core adhesive contact state at fixed ``offset`` (see module docstring).
+    """Solve a hard-core adhesive contact state at fixed ``offset`` (or ``load``).
 
     Parameters
     ----------
@@ -124,6 +130,10 @@ def minimize_energy_bounded(
     dtype : {None, "float64", "float32"}, optional
         Precision of the computation (default float64). float32 halves memory and
         time on a GPU; its accuracy floor is documented in the README.
+    load : float, optional
+        Mean pressure to carry inside the one minimisation (:mod:`._free_mean`; NumPy, a
+        periodic substrate with a rigid mean): the multiplier is ``mu = -load`` and the
+        mean of ``w`` (the offset) is free; ``offset`` is where it starts.
 
     Returns
     -------
@@ -168,11 +178,17 @@ def minimize_energy_bounded(
         w0 = warm_deflection(initial, substrate, h, compliance_operator(substrate, work_grid=True))
     else:
         w0 = xp.zeros(n, dtype=h.dtype, device=array_device(h))
-    w = project_feasible(w0 - xp.mean(w0) if rigid else w0, lower, rigid)
+    # under load control (load given) the mean of w is free and mu = -load (_free_mean)
+    free_mode = None if load is None else FreeMean.of(
+        load, interaction, substrate, h, Workspace(base), rigid and patch is None)
+    pin = rigid and free_mode is None  # the rigid mean as a constraint
+    w = project_feasible(w0 - xp.mean(w0) if rigid else w0, lower, pin)
     kw = stiff(w)
+    work_load = 0.0 if free_mode is None else free_mode.load  # N: its work N sum(w)
 
     def energy(w_, kw_):  # a device scalar off NumPy
-        return 0.5 * vdot(w_, kw_) + vtotal(interaction.energy(on_patch(base + w_)))
+        e = 0.5 * vdot(w_, kw_) + vtotal(interaction.energy(on_patch(base + w_)))
+        return e + work_load * vtotal(w_) if work_load else e
 
     # off NumPy (a GPU) the loop's scalars stay 0-d device arrays and the host reads them
     # in two transfers per iteration: the residual at the top, and the line search's first
@@ -229,13 +245,13 @@ def minimize_energy_bounded(
         on_wall = gap <= wall_tol
         if patch is not None:
             on_wall = on_wall & patch
-        mu = 0.0
-        if rigid:
+        mu = -work_load
+        if pin:
             mean = (lambda: vtotal(r) / n) if dev else (lambda: float(xp.mean(r)))
             mu = masked_mean(r, ~on_wall, mean)
         active = on_wall & (r - in_dt(mu) > zero_i)
         free = ~active
-        if rigid:
+        if pin:
             mu = masked_mean(r, free, lambda: mu)
         return gap, mu, active, free, xp.where(free, r - in_dt(mu), zero)
 
@@ -312,6 +328,11 @@ def minimize_energy_bounded(
         z = xp.where(free, green(rr), 0.0)
         if rigid:
             z = xp.where(free, z - in_dt(masked_mean(z, free, lambda: 0.0)), 0.0)
+        if free_mode is not None:  # the uniform block on the free sites
+            if (z := free_mode.add_on(z, rr, gap, free, it)) is None:
+                status, message = SolveStatus.DETACHED, free_mode.detached
+                break
+            z = xp.where(free, z, 0.0)
         restart = s is None or it % restart_every == 0 or active_old is None
         if dev:
             s, slope0, gz = _direction_on_device(xp, rr, z, z_old, s, gz_old, restart,
@@ -331,7 +352,8 @@ def minimize_energy_bounded(
         if dev:  # the largest feasible step, brought over with the line search's slope
             ratio = -gap / xp.where(crossing, s, -1.0)
             steps = [xp.min(xp.where(crossing, ratio, math.inf))]
-        alpha = line_minimum(interaction, gap, s, kw, ks, slope0, work=work,
+        alpha = line_minimum(interaction, gap, s, kw + work_load if work_load else kw, ks,
+                             slope0, work=work,
                              also=steps if dev else None, speculate=speculate if dev else None,
                              speculated=guess, next_point=dev)  # fmt: skip
         if not math.isfinite(alpha):
@@ -357,7 +379,7 @@ def minimize_energy_bounded(
         e_cur = energy(w, kw)  # (the energy is only needed here)
         # the step crosses the wall: project it, halve it while it does not lower E
         for _ in range(6):
-            w_try = project_feasible(w + alpha * s, lower, rigid)
+            w_try = project_feasible(w + alpha * s, lower, pin)
             kw_try = stiff(w_try)
             e_try = energy(w_try, kw_try)
             if dev:  # the next top's scalars come with the energy test (one transfer)
@@ -379,7 +401,8 @@ def minimize_energy_bounded(
             # it need not descend (e.g. after an offset change lifts a whole contact off
             # the wall); the projected gradient does, for a short enough step
             step = _projected_gradient_step(
-                w, kw, rr, e_cur, lower, rigid, stiff, energy, interaction, gap, work
+                w, kw + work_load if work_load else kw, rr, e_cur, lower, pin, stiff, energy,
+                interaction, gap, work,
             )
             if step is None:
                 status = SolveStatus.LINE_SEARCH_FAILED
@@ -390,6 +413,9 @@ def minimize_energy_bounded(
         s = None  # the face changed: restart the conjugate directions
 
     gap = base + w
+    if free_mode is not None:  # the offset moved with the mean of w
+        moved = float(xp.mean(w))
+        offset, w = offset + moved, w - moved
     p_int = law(interaction.pressure, gap)
     traction = on_patch(xp.where(free, p_int, kw - in_dt(mu)))  # none on the padding
     return make_result(

@@ -1,5 +1,19 @@
 r"""Load control for adhesive laws: find the offset whose equilibrium carries the load.
 
+For the smooth and the bounded solver on NumPy heights, a periodic substrate with a rigid
+mean (and for a law without hard core a load within :data:`ONE_MINIMISATION_LOADS` physical
+pressure scales), the load goes inside the one minimisation (:mod:`._free_mean`: the uniform
+mode of the gap is free and its force is the load not carried; on the wall the multiplier is
+the load): about the cost of an offset-controlled solve (1.1-3x cold, 1.0-1.5x a warm path
+step, against 10-30x for the search below: benchmarks/README.md). Where that fails (a
+non-finite state, a failed line search), and for every other case, the root search over
+nested solves below.
+
+Why the nested search cost 10-30x (measured, 128²-256², ℓa 0.005 and 0.05, load 1e-3 and
+0): 16-30 inner solves per load (about 9 while the bracket's step doubles from 0.01 rms,
+then 7-21 of regula falsi to the load's tolerance tol·E*), each 25-180 iterations although
+warm-started, because a change of the offset perturbs every contact at once.
+
 Under load control the offset ``d`` is the unknown conjugate to the load: on a stable
 branch the mean pressure :math:`\bar p(d)` of the displacement-controlled equilibrium
 decreases monotonically with ``d``, so the state with :math:`\bar p = N/A_0` is the root
@@ -14,6 +28,11 @@ tolerance of the inner solves. Laws whose force is discontinuous (Maugis–Dugda
 :math:`\bar p(d)` jump by :math:`\sigma_0 a_0^2/A_0` whenever a site crosses the end of
 the cohesive zone, so on a grid some loads are carried by no state: they are reported
 as not converged, and displacement control is the way to follow such a law.
+
+The search never goes below the offset where the law's repulsion is the load plus ten
+physical pressure scales (full contact at that load, :func:`.adhesive_rules.lowest_smooth_offset`):
+doubling steps once jumped from an adhesive state at d = 1.12 to d = -0.16, a runaway of
+uniform p = 3.7e13 E*, reported as "stalled" (128², ℓa 0.05, load 1e-3).
 """
 
 from __future__ import annotations
@@ -22,12 +41,31 @@ import dataclasses
 import math
 import time
 
-from .._backend import dtype_name
+from .._backend import dtype_name, is_numpy_array, to_numpy
+from .adhesive_rules import carrying, lowest_smooth_offset, physical_pressure_scale
 from .inputs import check_problem, checked_heights, height_statistics
 from .result import SolveStatus
 from .roots import false_position, illinois
 
 __all__ = ["solve_at_load"]
+
+
+#: The load inside the one minimisation (a law without hard core) up to this many physical
+#: pressure scales
+#: (:mod:`.adhesive_rules`); beyond (1e9 E*: 3300 iterations there, ~600 by the nested
+#: search, which starts at full contact at the load) the nested root search.
+ONE_MINIMISATION_LOADS = 100.0
+
+
+def _one_minimisation(minimize, heights, substrate) -> bool:
+    """Whether ``minimize`` takes the load itself (:mod:`._free_mean`): the smooth or the
+    bounded solver on NumPy heights, a periodic substrate with a rigid mean."""
+    from .bounded import minimize_energy_bounded
+    from .smooth import minimize_energy
+
+    periodic = tuple(substrate.work_shape) == tuple(substrate.shape)
+    return (minimize in (minimize_energy, minimize_energy_bounded) and is_numpy_array(heights)
+            and periodic and substrate.rigid_mean)  # fmt: skip
 
 
 def solve_at_load(
@@ -61,7 +99,8 @@ def solve_at_load(
     def evaluate(d):
         near = min(states, key=lambda x: abs(x - d)) if states else None
         start = states[near] if near is not None else initial
-        with checked_heights(heights, stats):  # checked above: not again in every inner solve
+        # checked above: not again in every inner solve; their floor judged with the load
+        with checked_heights(heights, stats), carrying(load):
             res = minimize(
                 heights, substrate, interaction, offset=d, initial=start, tol=tol,
                 max_iter=max_iter, callback=callback, dtype=dtype,
@@ -97,6 +136,46 @@ def solve_at_load(
         d_a = float(initial.offset)
     else:
         d_a = stats["max"] + (interaction.equilibrium_distance or 0.0)  # None: hard core
+    if _one_minimisation(minimize, h, substrate) and (
+        interaction.hard_core  # full contact on the wall carries any load: no runaway
+        or abs(load) <= ONE_MINIMISATION_LOADS
+        * physical_pressure_scale(to_numpy(h), substrate, interaction)
+    ):
+        # the load inside the one minimisation (:mod:`._free_mean`): the cost of an
+        # offset-controlled solve; the nested search below only where it fails
+        def run(target, start, init):
+            with checked_heights(heights, stats), carrying(target):
+                res = minimize(
+                    heights, substrate, interaction, offset=start, initial=init, tol=tol,
+                    max_iter=max_iter, callback=callback, dtype=dtype, load=target,
+                )  # fmt: skip
+            total["it"] += res.iterations
+            return res
+
+        res = run(load, d_a, initial)
+        if res.status is SolveStatus.DETACHED and initial is None:
+            # a cold tensile load pulls a barely touching surface off: into contact at
+            # load 0 first (the jump in), then pulled to the load from that state
+            first = run(0.0, d_a, None)
+            if first.converged:
+                res = run(load, first.offset, first)
+        if res.converged and abs(res.load - load) <= load_tol:
+            full = interaction.hard_core and res.repulsive_area >= 1.0
+            return finish(res, True, "converged (load control)" + (
+                "; full contact: every site on the wall, whose reaction carries the load at "
+                "offset mean(heights)" if full else ""))  # fmt: skip
+        stops = (SolveStatus.CALLBACK, SolveStatus.ITERATION_LIMIT, SolveStatus.STALLED,
+                 SolveStatus.DETACHED)  # fmt: skip
+        if res.status in stops:
+            return finish(res, False, res.message)
+    if load < 0 and initial is None and not states:
+        # cold and tensile: the nested search would open up from first contact and find
+        # the surfaces detached; the state at load 0 (the jump into contact) first
+        first = solve_at_load(minimize, heights, substrate, interaction, load=0.0, initial=None,
+                              tol=tol, max_iter=max_iter, callback=callback)  # fmt: skip
+        total["it"] += first.iterations
+        if first.converged:
+            d_a, states[first.offset] = first.offset, first
     res_a = evaluate(d_a)
     f_a = res_a.load - load
     if not res_a.converged or abs(f_a) <= load_tol:
@@ -110,11 +189,23 @@ def solve_at_load(
     lowest = -math.inf
     if interaction.hard_core and substrate.rigid_mean:
         lowest = stats["mean"]
+    elif substrate.rigid_mean:  # no lower than full contact at the load (adhesive_rules)
+        pressure_scale = physical_pressure_scale(to_numpy(h), substrate, interaction)
+        lowest = lowest_smooth_offset(interaction, stats["mean"], load, pressure_scale)
     for _ in range(60):
         keep_only(d_a)
         d_b = d_a + direction * step
         near_bound = d_b <= lowest
-        if near_bound:
+        if near_bound and not interaction.hard_core:
+            if d_a <= lowest:
+                return finish(
+                    res_a, False, f"load {load:g} not reached: it is {res_a.load:g} at offset "
+                    f"{d_a:g}, in full contact (the law's repulsion there exceeds the load by "
+                    "ten times the pressure scale E*·h'rms)",
+                    SolveStatus.FULL_CONTACT,
+                )  # fmt: skip
+            d_b = lowest
+        elif near_bound:
             if d_a - lowest <= 1e-6 * scale:
                 return finish(
                     res_a, False, f"load {load:g} not reached: it is {res_a.load:g} at offset "

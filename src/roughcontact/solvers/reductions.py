@@ -7,7 +7,7 @@ from array_api_compat import is_numpy_namespace  # cached per namespace
 
 from .._backend import array_namespace, is_numpy_array, to_numpy
 
-__all__ = ["DOT_CHUNK", "dot", "fetch", "on_device", "total", "vdot", "vtotal"]
+__all__ = ["DOT_CHUNK", "dot", "fetch", "largest", "on_device", "total", "vdot", "vtotal"]
 
 
 #: Length of the rows a long NumPy inner product is cut into (see :func:`dot`).
@@ -85,3 +85,12 @@ def fetch(xp, scalars) -> list[float]:
     for i, v in zip(arrays, to_numpy(xp.stack(wide)).tolist(), strict=True):
         values[i] = v
     return values
+
+
+def largest(values) -> float:
+    """``max |values|`` of a flat array as a Python float (0 for none): the pressure scale
+    of the smooth solver's floor guard."""
+    if values.shape[0] == 0:
+        return 0.0
+    xp = array_namespace(values)
+    return float(xp.max(xp.abs(values)))

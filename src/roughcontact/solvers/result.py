@@ -23,7 +23,8 @@ class SolveStatus(enum.StrEnum):
     CONVERGED = "converged"
     #: ``max_iter`` iterations without meeting ``tol``.
     ITERATION_LIMIT = "iteration_limit"
-    #: Stuck at the rounding floor (float32, or float64 under deep compression).
+    #: Stuck at the rounding floor of the physical pressure scale (float32; float64 with a
+    #: ``tol`` below what it resolves): the state is an equilibrium to that floor.
     STALLED = "stalled"
     #: A non-finite pressure, state or step (check the inputs and the interaction).
     NON_FINITE = "non_finite"
@@ -42,6 +43,11 @@ class SolveStatus(enum.StrEnum):
     FULL_CONTACT = "full_contact"
     #: Load control: no offset bracketing the load within 60 doublings of the search step.
     NOT_BRACKETED = "not_bracketed"
+    #: Pressures beyond any elastic equilibrium (an offset that pushes the surfaces through
+    #: each other, far below full contact): the residual stopped at float64's rounding
+    #: floor of those pressures, far above a force balance on the physical scale
+    #: (``E*·h'rms``, the law's largest attraction); not an equilibrium, no load carried.
+    RUNAWAY = "runaway"
 
 
 #: The numbers describing one solved state: the path datasets' per-step variables and,

@@ -111,6 +111,7 @@ from .._backend import (
     computes_on_heights_device,
     dtype_name,
     overlaps_fft,
+    to_numpy,
 )
 from .._validate import ParameterError
 from ._block import (  # noqa: F401 - STIFF_FRACTION, _precondition, _stiff_sites: public here
@@ -121,15 +122,17 @@ from ._block import (  # noqa: F401 - STIFF_FRACTION, _precondition, _stiff_site
     _stiff_sites,
 )
 from ._blocks import Schedule
+from ._free_mean import FreeMean
 from ._inplace import Workspace
 from ._smooth_steps import _DeviceSteps
+from .adhesive_rules import floor_verdict, physical_pressure_scale
 from .fourier import compliance_operator, on_work_grid, patch_sites, stiffness_operator
 from .inputs import check_problem, warm_deflection
 from .line_search import line_minimum
 from .loop_control import RELIABLE_DROP, RELIABLE_EVERY, ReliableUpdates, StallGuard, stopping
 from .observables import make_result
 from .reductions import dot as _dot
-from .reductions import fetch, vdot, vtotal
+from .reductions import fetch, largest, vdot, vtotal
 from .result import SolveStatus
 
 __all__ = ["minimize_energy"]
@@ -152,28 +155,33 @@ class FloorGuard:
     """Stops a float64 solve stuck at its rounding floor early, and says why.
 
     The residual ``max |K w - p_int| / E*`` is a difference of pressures of size
-    ``p = max |p_int|``, each rounded to float64: it cannot fall much below
-    ``p eps / E*`` (``eps = 2**-52``; measured: 1 to 15 such units). Under deep compression
-    (pressures of ~1e8 E* and more, offsets far into contact) that floor lies above ``tol``, and
-    a solve used to spend its whole iteration cap there (256², lj93smooth, 1.3e13 E*: the
-    residual pinned at 0.7 floors from iteration 100 on, 0.3 s an iteration). The guard
-    declares a stall when the best residual has not halved over :data:`FLOOR_PATIENCE`
-    iterations and is within :data:`FLOOR_ULPS` floors; the state is then as accurate as
-    float64 allows and comes back with ``converged=False``. The convergence test comes
-    first, and a solve above the floor (every normal one: tol 1e-8 is ~5e7 floors at
-    p ~ 1 E*) is never stopped by it, so iteration counts do not change. float32 solves
-    keep ``stall`` (:class:`.loop_control.StallGuard`), which this wraps.
+    ``p = max |p_int|``, each rounded to float64: it cannot fall much below ``p eps / E*``
+    (``eps = 2**-52``; measured: 1 to 15 such units). Under deep compression (~1e8 E* and
+    more) that floor lies above ``tol``, and a solve used to spend its whole iteration cap
+    there (256², 1.3e13 E*: 0.7 floors from iteration 100 on). The guard stops the solve when
+    the best residual has not halved over :data:`FLOOR_PATIENCE` iterations and is within
+    :data:`FLOOR_ULPS` floors of its own pressure; what that means is judged on the
+    *physical* scale ``physical_scale()`` (E*·h'rms or the law's largest attraction,
+    :func:`.adhesive_rules.floor_verdict`), never on the state's own maximum: ``kind``
+    "stalled" (:attr:`SolveStatus.STALLED`) or "runaway" (:attr:`SolveStatus.RUNAWAY`:
+    uniform p = 3.7e13 E* once came back as "stalled ... as accurate as float64 allows").
+    Without ``physical_scale`` the own pressure stands for it. A normal solve is never
+    stopped by it. float32 keeps ``stall`` (:class:`.loop_control.StallGuard`).
     """
 
-    def __init__(self, stall, precision, pressure_scale, contact_modulus, tol):
+    def __init__(self, stall, precision, pressure_scale, contact_modulus, tol,
+                 physical_scale=None):  # fmt: skip
         self.stall, self.scale = stall, pressure_scale  # scale(): max |p_int| now
+        self.physical = physical_scale
         self.active = precision == "float64"
         self.modulus, self.tol = contact_modulus, tol
         self.reference, self.best, self.since = math.inf, math.inf, 0
+        self.kind = None  # "stalled" or "runaway" once it has stopped the solve
 
     def __call__(self, residual: float) -> str | None:
         """The not-converged message when the solve is stuck at the floor, else None."""
         if (message := self.stall(residual)) is not None or not self.active:
+            self.kind = None if message is None else "stalled"
             return message
         self.best = min(self.best, residual)
         if self.best < 0.5 * self.reference:
@@ -187,12 +195,11 @@ class FloorGuard:
         if not self.best <= FLOOR_ULPS * floor:  # slow, but above the floor: a new window
             self.reference, self.since = self.best, 0
             return None
-        return (
-            f"stalled at the float64 rounding floor: residual {self.best:.3g} (units of E*), "
-            f"pressure scale p = {pressure:.3g} (max |p|), floor ~p·eps/E* = {floor:.3g}; no "
-            f"progress in {FLOOR_PATIENCE} iterations: the state is as accurate as float64 "
-            f"allows (tol {self.tol:g} is below what float64 resolves at this pressure)"
+        physical = pressure if self.physical is None else self.physical()
+        self.kind, message = floor_verdict(
+            self.best, pressure, physical, self.modulus, self.tol, FLOOR_PATIENCE
         )
+        return message
 
 
 def _local(evaluate, cutoff, gap):
@@ -221,8 +228,9 @@ def minimize_energy(
     refresh_every=10,
     device=None,
     dtype=None,
+    load=None,
 ):
-    """Solve a smooth-interaction contact state at fixed ``offset``.
+    """Solve a smooth-interaction contact state at fixed ``offset`` (or ``load``).
 
     Parameters
     ----------
@@ -254,6 +262,9 @@ def minimize_energy(
     dtype : {None, "float64", "float32"}, optional
         Precision of the computation (default float64). float32 halves memory and
         time on a GPU; its accuracy floor is documented in the README.
+    load : float, optional
+        Mean pressure to carry (load control in the one minimisation, :mod:`._free_mean`;
+        NumPy, periodic, rigid mean): ``offset`` is then where the search starts.
 
     Returns
     -------
@@ -295,6 +306,7 @@ def minimize_energy(
     # the sites `near` (None: every site) where it can be nonzero
     cutoff = interaction.cutoff
     near = work.interacting(gap, cutoff)
+    free = FreeMean.of(load, interaction, substrate, h, work, rigid and patch is None)
     # a warm start refreshes the block preconditioner at once, except on a free boundary
     # (module docstring)
     refresh_at_once = initial is not None and patch is None
@@ -304,7 +316,7 @@ def minimize_energy(
     def imbalance(kw, p_near, near):
         """gr = K w - p_int, without its mean when the uniform mode is rigid (its force
         is the load)."""
-        m = (vtotal(kw) - vtotal(p_near)) / n if rigid else 0.0
+        m = (-free.load if free else (vtotal(kw) - vtotal(p_near)) / n) if rigid else 0.0
         g = work.shifted(gr, kw, m)
         if near is None:
             g -= p_near
@@ -333,11 +345,12 @@ def minimize_energy(
     status, message = SolveStatus.ITERATION_LIMIT, "iteration cap reached"
     residual, it = math.inf, 0
     extremes, guess = None, {}  # the residual's extremes fetched ahead; speculate's result
-    stall = FloorGuard(StallGuard(dtype_name(h)), dtype_name(h), lambda: _largest(p_near), es, tol)
+    stall = FloorGuard(StallGuard(dtype_name(h)), dtype_name(h), lambda: largest(p_near), es,
+                       tol, lambda: physical_pressure_scale(to_numpy(h), substrate, interaction))
     # off NumPy, blocks of device steps between host syncs (:mod:`._smooth_steps`); a free
     # boundary (gathers on the patch) and a callback (every iteration) stay here
     blocks, host_step = None, False
-    if not work.inplace and patch is None and callback is None:
+    if not work.inplace and patch is None and callback is None and not free:
         blocks = Schedule()
         stepper = _DeviceSteps(xp, work, interaction, imbalance,
                                (compliance, elastic_pressure, fast), rigid, es,
@@ -362,6 +375,8 @@ def minimize_energy(
             directions = False  # they were built on a drifted gradient
         if (end := stopping(residual <= tol, residual, stall, it, max_iter)) is not None:
             status, message = end
+            if status is SolveStatus.STALLED and stall.kind == "runaway":
+                status = SolveStatus.RUNAWAY
             break
         if callback is not None and it > 0 and callback(it, residual):
             status, message = SolveStatus.CALLBACK, "stopped by callback"
@@ -400,9 +415,13 @@ def minimize_energy(
             stiff, diagonal = _stiff_sites(interaction, gap, self_stiffness, work)
         z_old, z = z, z_old  # z_old is the previous z; its array is reused for the new z
         z, kz = _precondition(
-            gr, stiff, diagonal, compliance, elastic_pressure, rigid,
-            out=z, work=work, fast=fast, result=fast_result, background=overlap,
+            free.mean_free(gr) if free else gr, stiff, diagonal, compliance, elastic_pressure,
+            rigid,
+            out=z, work=work, fast=fast, result=fast_result, background=overlap and not free,
         )  # fmt: skip
+        if free and (z := free.add(z, gr, gap, it, refresh_every)) is None:
+            status, message = SolveStatus.DETACHED, free.detached
+            break
         if work.inplace:
             gz = _dot(gr, z)
             # PR+ (gz_old is 0 only at the rounding floor of a deeply compressed state)
@@ -449,6 +468,8 @@ def minimize_energy(
         kw = work.axpy(kw, alpha, ks)
         gr = imbalance(kw, p_near, near)
 
+    if free:  # the offset moved with the gap's mean
+        offset, base = free.moved(offset, gap, base)
     if patch is not None:  # the patch of the work grid (no pressure on the padding)
         gap, base = gap[patch], base[patch]
     p_int = _local(interaction.pressure, cutoff, gap)
@@ -477,11 +498,3 @@ def _stall_left(stall) -> int:
     left = FLOOR_PATIENCE - stall.since - 1 if stall.active else 1 << 30
     inner = stall.stall
     return min(left, inner.patience - inner.since - 1 if inner.active else left)
-
-
-def _largest(values) -> float:
-    """``max |values|`` (0 for none): the pressure scale of :class:`FloorGuard`."""
-    if values.shape[0] == 0:
-        return 0.0
-    xp = array_namespace(values)
-    return float(xp.max(xp.abs(values)))

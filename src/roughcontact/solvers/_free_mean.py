@@ -1,0 +1,127 @@
+r"""Load control inside the one minimisation of :mod:`.smooth`: the uniform mode set free.
+
+With a rigid uniform mode the offset ``d`` is the gap's mean plus ``mean(h)``. Under a load
+``N`` (mean pressure) the energy per site is
+
+.. math:: E(g) = \tfrac12 w K w + \sum_i V(g_i) + N\, n\, d, \qquad
+          w = g - (d - h),\ d = \bar g + \bar h,
+
+so its gradient is :math:`K w - p_{int}(g) + N`: the force imbalance of the offset-controlled
+solve plus its mean, :math:`N - \bar p`, the load not carried. The gap (the iterate) then
+moves in all its modes, the offset with it, and the minimum is the equilibrium that carries
+``N`` and is stable under load control (a minimum of the enthalpy), found in one nonlinear
+CG run instead of a root search over nested solves (:mod:`.load_control`). ``K`` kills the
+uniform mode (rigid), so ``K s`` and ``K w`` are those of the offset-controlled loop; only the
+preconditioner needs a uniform block: ``z += mean(gr) / k_u`` with ``k_u``
+(:func:`uniform_stiffness`) a fraction of the interaction's mean curvature on its repulsive
+sites, at least the longest wavelength's elastic stiffness ``E* pi / L``; the block
+preconditioner takes the mean-free ``gr - mean(gr)`` (a block-diagonal split).
+
+Cost (iterations, cold from first contact, ``benchmarks/adhesive_load.py``): 1.1-1.9x the
+offset-controlled cold solve ending in the same state at ℓa 0.05 (128², 256²), 1.3-2x at
+ℓa 0.005 up to 64², 2.1-3.5x at 128²-256²: the offset has to travel from first contact
+(about one rms height) while the contacts form one after another, where the offset-
+controlled solve starts at its offset. A warm path step costs 1.0-1.4x an offset step.
+The nested root search it replaces took 10-30x.
+"""
+
+from __future__ import annotations
+
+from .._validate import ParameterError
+from . import adhesive_rules as rules
+
+__all__ = ["FreeMean", "add_uniform", "uniform_stiffness"]
+
+
+class FreeMean:
+    """The free uniform mode of one load-controlled minimisation (module docstring)."""
+
+    def __init__(self, load, interaction, substrate, heights, work):
+        self.load, self.law, self.substrate, self.work = float(load), interaction, substrate, work
+        self.reach = max(float(work.xp.std(heights)), substrate.pixel_size)
+        self.k_u, self.detached = None, None
+        self.peak = rules.attraction_peak_gap(interaction) if self.load < 0 else 0.0
+
+    @classmethod
+    def of(cls, load, interaction, substrate, heights, work, periodic_rigid):
+        """The free mode for ``load`` (None: offset control, no free mode); it needs NumPy
+        (``work.inplace``) and a periodic substrate with a rigid mean."""
+        if load is None:
+            return None
+        if not (periodic_rigid and work.inplace):
+            raise ParameterError(
+                "load in minimize_energy needs NumPy heights on a periodic substrate with a "
+                "rigid mean (else solve(load=...) takes the nested search)"
+            )
+        return cls(load, interaction, substrate, heights, work)
+
+    def mean_free(self, gr):
+        """``gr - mean(gr)``: what the block preconditioner takes."""
+        return gr - self.work.xp.mean(gr)
+
+    def add(self, z, gr, gap, it, refresh_every):
+        """``z`` with its uniform block (:func:`add_uniform`); ``k_u`` refreshed with the
+        preconditioner's stiff sites. None, with ``detached`` the message, once a tensile
+        load has pulled every site beyond the law's cutoff (no force left to balance it:
+        the surfaces separate for good)."""
+        if self._lost(gap, it):
+            return None
+        if self.k_u is None or it % refresh_every == 1:
+            self.k_u = uniform_stiffness(self.law, gap, self.substrate, self.work)
+        return add_uniform(z, gr, self.k_u, self.reach, self.work)
+
+    def add_on(self, z, rr, gap, free, it):
+        """The bounded solver's uniform block (:mod:`.bounded`): ``z + shift`` with shift
+        the mean of ``rr`` over the ``free`` sites over ``k_u``
+        (:func:`.adhesive_rules.wall_uniform_stiffness`; bounded; on the wall's active face
+        the caller zeroes it). None, with ``detached``, as in :meth:`add`."""
+        xp = self.work.xp
+        if self._lost(gap, it):
+            return None
+        n_free, sub = int(xp.count_nonzero(free)), self.substrate
+        k_u = rules.wall_uniform_stiffness(1.0 - n_free / free.shape[0], sub.self_stiffness,
+                                           sub.contact_modulus, max(sub.shape) * sub.pixel_size)
+        mean = float(xp.sum(rr)) / max(n_free, 1)  # rr is 0 off the free sites
+        return z + float(rules.uniform_shift(mean, k_u, self.reach))
+
+    def _lost(self, gap, it) -> bool:
+        """Whether the tensile load is lost (:func:`.adhesive_rules.tension_lost`); then
+        ``detached`` says so."""
+        if self.load >= 0:
+            return False
+        min_gap = float(self.work.xp.min(gap))
+        if not rules.tension_lost(self.law, self.load, min_gap, self.peak):
+            return False
+        self.detached = (
+            f"no state carries load {self.load:g}: at iteration {it} the surfaces separate "
+            f"(smallest gap {min_gap:.3g}, beyond the attraction's peak, where no site pulls "
+            "that hard): beyond the pull-off force"
+        )
+        return True
+
+    def moved(self, offset, gap, base):
+        """The offset and ``base`` (``d - h``) of the final gap: moved with its mean."""
+        shift = float(self.work.xp.mean(gap - base))
+        return offset + shift, base + shift
+
+
+def uniform_stiffness(interaction, gap, substrate, work) -> float:
+    """``k_u`` (pressure/length) of the state ``gap`` by the shared rule
+    :func:`.adhesive_rules.uniform_stiffness` (module docstring)."""
+    xp = work.xp
+    near = work.interacting(gap, interaction.cutoff)
+    curvature = interaction.curvature(gap if near is None else gap[near])
+    total = float(xp.sum(xp.where(curvature > 0, curvature, 0.0)))
+    size = max(substrate.shape) * substrate.pixel_size
+    return rules.uniform_stiffness(total / gap.shape[0], substrate.contact_modulus, size)
+
+
+def add_uniform(z, gr, k_u, reach, work):
+    """The preconditioned gradient with its uniform block: ``z + mean(gr)/k_u``, that shift
+    at most ``reach`` (length) in magnitude. ``z`` is the block preconditioner's of the
+    mean-free ``gr - mean(gr)`` (a block-diagonal split, positive definite), and its
+    ``K z`` holds for the sum (``K`` has no uniform mode).
+
+    The shift and its bound are :func:`.adhesive_rules.uniform_shift`'s."""
+    z += float(rules.uniform_shift(float(work.xp.mean(gr)), k_u, reach))
+    return z

@@ -1,0 +1,101 @@
+"""Load control inside the one minimisation (the uniform mode free, solvers/_free_mean.py):
+as cheap as displacement control, the same state as the nested root search."""
+
+import functools
+import importlib
+
+import numpy as np
+import pytest
+
+import roughcontact as rc
+from roughcontact import SolveStatus
+
+load_control = importlib.import_module("roughcontact.solvers.load_control")
+smooth = importlib.import_module("roughcontact.solvers.smooth")
+
+
+def _problem(n, la, seed=7):
+    h = rc.self_affine((n, n), hurst=0.8, rms_slope=0.1, short_cutoff=4, seed=seed)
+    return h, rc.Substrate((n, n)), rc.SmoothLJ93.from_adhesion_length(la)
+
+
+@pytest.mark.parametrize(
+    ("n", "la", "load", "ratio"),
+    [
+        # measured 1.13 / 1.24 / 1.41; the nested root search took 10-30x (benchmarks/README.md)
+        (64, 0.05, 1e-3, 1.5),
+        (64, 0.05, 0.0, 1.5),
+        (32, 0.005, 1e-3, 2.0),
+    ],
+)
+def test_cold_load_control_costs_at_most_the_offset_solve_times(n, la, load, ratio):
+    h, sub, law = _problem(n, la)
+    res = rc.solve(h, sub, law, load=load)
+    assert res.converged and abs(res.load - load) <= res.tol, res.message
+    same = rc.solve(h, sub, law, offset=res.offset)  # the offset-controlled solve to it
+    assert same.converged and np.abs(same.gap - res.gap).max() < 1e-6
+    assert res.iterations <= ratio * same.iterations, (res.iterations, same.iterations)
+
+
+def test_the_same_state_as_the_nested_root_search():
+    h, sub, law = _problem(32, 0.05, seed=1)
+    one = rc.solve(h, sub, law, load=5e-4)
+    # a minimiser that is not minimize_energy itself takes the nested search
+    nested_minimize = functools.partial(smooth.minimize_energy)
+    nested = load_control.solve_at_load(
+        nested_minimize, h, sub, law, load=5e-4, initial=None, tol=None, max_iter=5000,
+        callback=None,
+    )  # fmt: skip
+    assert one.converged and nested.converged
+    assert one.offset == pytest.approx(nested.offset, abs=1e-6)
+    np.testing.assert_allclose(one.pressure, nested.pressure, atol=1e-6)
+    assert nested.iterations > 3 * one.iterations  # why it was replaced
+
+
+@pytest.mark.parametrize(("la", "ratio"), [(0.005, 1.5), (0.05, 1.5)])
+def test_load_controlled_path_step_costs_an_offset_step(la, ratio):
+    h, sub, law = _problem(64, la)
+    loads = np.linspace(0.0, 2e-3, 5)
+    by_load = rc.approach_retract(h, sub, law, loads=loads, retract=False)
+    assert all(by_load["converged"].values)
+    np.testing.assert_allclose(by_load["load"].values, loads, atol=1e-8)
+    by_offset = rc.approach_retract(h, sub, law, offsets=by_load["offset"].values, retract=False)
+    warm_load = np.median(by_load["iterations"].values[1:])
+    warm_offset = np.median(by_offset["iterations"].values[1:])
+    assert warm_load <= ratio * warm_offset, (warm_load, warm_offset)
+
+
+def test_beyond_pull_off_is_still_detached():
+    h, sub, law = _problem(32, 0.005)
+    res = rc.solve(h, sub, law, load=-1.0)
+    assert res.status is SolveStatus.DETACHED and not res.converged
+
+
+def test_the_uniform_block_rules():
+    rules = importlib.import_module("roughcontact.solvers.adhesive_rules")
+    # the elastic floor E* pi / L out of contact, the curvature's fraction in contact
+    assert rules.uniform_stiffness(0.0, 2.0, 64.0) == pytest.approx(2.0 * np.pi / 64.0)
+    assert rules.uniform_stiffness(10.0, 1.0, 64.0) == pytest.approx(rules.UNIFORM_FRACTION * 10)
+    # the shift mean(gr)/k_u, bounded by the reach either way
+    assert rules.uniform_shift(0.01, 0.1, 0.5) == pytest.approx(0.1)
+    assert rules.uniform_shift(1e9, 0.05, 0.5) == 0.5
+    assert rules.uniform_shift(-1e9, 0.05, 0.5) == -0.5
+
+
+@pytest.mark.parametrize("load", [1e-3, 0.0])
+def test_hard_core_load_in_one_minimisation(load):
+    # the bounded solver with mu = -load and a free mean: the nested search took 150-550
+    h, sub, _ = _problem(64, 0.05)
+    law = rc.Exponential(work_of_adhesion=0.05, range=1.0)
+    res = rc.solve(h, sub, law, load=load)
+    assert res.converged and abs(res.load - load) <= res.tol, res.message
+    same = rc.solve(h, sub, law, offset=res.offset)
+    assert same.converged and np.abs(same.gap - res.gap).max() < 1e-6
+    assert res.iterations <= 2.0 * same.iterations, (res.iterations, same.iterations)
+    bounded = importlib.import_module("roughcontact.solvers.bounded")
+    nested = load_control.solve_at_load(
+        functools.partial(bounded.minimize_energy_bounded), h, sub, law, load=load,
+        initial=None, tol=None, max_iter=5000, callback=None,
+    )  # fmt: skip
+    assert nested.converged and nested.offset == pytest.approx(res.offset, abs=1e-6)
+    assert nested.iterations > 3 * res.iterations
