@@ -71,14 +71,16 @@ _NAMESPACES: dict = {}
 
 
 def constant(value: float, like):
-    """``value`` as an operand of ``like``: the Python float on NumPy (and with a Python or
-    NumPy scalar ``like``), elsewhere a cached
+    """``value`` as an operand of ``like``: the Python float on NumPy and JAX (and with a
+    Python or NumPy scalar ``like``), elsewhere a cached
     array of shape ``(1,) * like.ndim`` in ``like``'s dtype on its device (the same
     values: a Python scalar operand takes the array's dtype; array_api_strict converts a
     Python scalar at every use, two arrays more per operation, which this avoids)."""
     if type(like) is np.ndarray or isinstance(like, (float, int, np.generic)):
         return value  # (the common NumPy case first: the laws call this per operation)
-    if is_numpy_array(like):
+    if is_numpy_array(like) or is_jax_array(like):
+        # JAX: a Python scalar is weakly typed (it takes the array's dtype), and a cached
+        # array made while a compiled program is traced would leak the tracer
         return value
     xp = array_namespace(like)
     key = (type(like), like.dtype, array_device(like), like.ndim, float(value).hex())

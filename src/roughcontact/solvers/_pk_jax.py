@@ -44,7 +44,7 @@ import jax.numpy as jnp
 from jax import lax
 
 from .._validate import ParameterError
-from .loop_control import RELIABLE_EVERY
+from .loop_control import RELIABLE_EVERY, STALL_IMPROVEMENT, STALL_PATIENCE
 from .pk_rules import JOINING_KEEPS_DIRECTIONS, RESUME_PRECONDITIONING
 from .result import SolveStatus
 
@@ -53,9 +53,6 @@ __all__ = ["State", "check_jax_inputs", "iterate_jax", "prepare", "run"]
 _STIFFNESS, _COMPLIANCE = 0, 1  # the fields of FourierMultipliers
 #: The status codes the loop leaves in ``State.status``.
 RUNNING, CONVERGED, LIMIT, STALLED, NON_FINITE, BREAKDOWN, NO_CONTACT = range(7)
-#: The float32 stall guard (as :class:`.loop_control.StallGuard`): stop after this many
-#: iterations without a 1 % improvement of the best residual.
-STALL_PATIENCE = 200
 
 
 def x64_enabled() -> bool:
@@ -260,7 +257,7 @@ def run(st, k, *, load, precondition, rigid_mean, stall):
         best, since = st.best, st.since
         stalled = jnp.zeros((), dtype=bool)
         if stall:
-            improved = residual < 0.99 * best
+            improved = residual < STALL_IMPROVEMENT * best
             best = jnp.where(improved, residual, best)
             since = jnp.where(improved, 0, since + 1)
             stalled = since >= STALL_PATIENCE

@@ -95,13 +95,14 @@ def solve(
             device=device,
             dtype=dtype,
         )
-    if is_jax_array(heights):
-        raise ParameterError(
-            "JAX heights are solved for the hard wall only (its compiled loop); pass NumPy or "
-            f"CuPy heights for {type(interaction).__name__}"
-        )
     if (load is None) == (offset is None):
         raise ParameterError("give exactly one of load (mean pressure) or offset")
+    if is_jax_array(heights):  # the compiled loops (jax is imported only here)
+        from ._adhesive_jax import solve_jax
+
+        return solve_jax(heights, substrate, interaction, load=load, offset=offset,
+                         initial=initial, tol=tol, max_iter=max_iter, callback=callback,
+                         device=device, dtype=dtype)  # fmt: skip
     minimize = minimize_energy_bounded if interaction.hard_core else minimize_energy
     kwargs = {"initial": initial, "tol": tol, "max_iter": max_iter, "callback": callback}
     kwargs |= {"device": device, "dtype": dtype}

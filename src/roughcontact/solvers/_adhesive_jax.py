@@ -1,0 +1,121 @@
+"""Adhesive solves on JAX heights: the compiled loops' entry points and their result records.
+
+:func:`minimize_energy_jax` runs :mod:`._smooth_jax` (smooth laws) for one offset: the
+inputs are checked as for the NumPy solvers (:func:`.inputs.check_problem`), the loop is
+one compiled program, and the host reads its iteration count, residual and status once
+(then :func:`.observables.make_result` reduces the record's scalars in one transfer).
+The fields of the result stay JAX arrays on the heights' device. jax is imported only
+when JAX heights arrive (this module is imported lazily by :mod:`.solve`).
+"""
+
+from __future__ import annotations
+
+import time
+
+import jax
+import jax.numpy as jnp
+
+from .._validate import ParameterError
+from ._pk_jax import check_jax_inputs
+from .fourier import compliance_operator
+from .inputs import check_problem, warm_deflection
+from .loop_control import STALL_PATIENCE
+from .observables import make_result
+from .result import SolveStatus
+from .smooth_rules import EPS64, FLOOR_PATIENCE, REFRESH_EVERY, RESTART_EVERY
+
+__all__ = ["minimize_energy_jax", "solve_jax"]
+
+
+def _initial_deflection(initial, substrate, h):
+    """The warm start's deflection (2D, mean-free with a rigid mean) or zeros."""
+    if initial is None:
+        return jnp.zeros_like(h)
+    w = warm_deflection(initial, substrate, h, compliance_operator(substrate, work_grid=True))
+    w = jnp.reshape(w, h.shape)
+    return w - jnp.mean(w) if substrate.rigid_mean else w
+
+
+def minimize_energy_jax(
+    heights,
+    substrate,
+    interaction,
+    *,
+    offset,
+    initial=None,
+    tol=None,
+    max_iter=5000,
+    callback=None,
+    restart_every=RESTART_EVERY,
+    refresh_every=REFRESH_EVERY,
+    device=None,
+    dtype=None,
+):
+    """:func:`.smooth.minimize_energy` for JAX ``heights`` (length), compiled.
+
+    The same parameters, results and units (offset: length; ``tol`` on
+    ``max |K w - p_int| / E*``); periodic substrates only, no ``callback``, ``device``
+    None (place the heights with ``jax.device_put``). Returns a :class:`ContactResult`
+    whose fields are JAX arrays on the heights' device.
+    """
+    from . import _smooth_jax as sj
+
+    t_start = time.perf_counter()
+    dtype = check_jax_inputs(heights, substrate, dtype, device, callback)
+    h, tol = check_problem(heights, substrate, tol, offset, None, dtype)
+    offset = float(offset)
+    base = offset - h
+    w = _initial_deflection(initial, substrate, h)
+    st, k = sj.prepare(w, substrate, interaction, base=base, tol=tol, max_iter=int(max_iter),
+                       restart_every=int(restart_every), refresh_every=int(refresh_every),
+                       warm=initial is not None)  # fmt: skip
+    st = sj.run(st, k, law=interaction, rigid=bool(substrate.rigid_mean),
+                stall=dtype == "float32", floor=dtype == "float64")  # fmt: skip
+    scalars = (st.it, st.residual, st.status, st.best, st.floor_best, jnp.max(jnp.abs(st.p)))
+    it, residual, code, best, floor_best, scale = (x.item() for x in jax.device_get(scalars))
+    status, message = _outcome(code, it, best, floor_best, scale, substrate, tol)
+    p, rep, att, deflection = sj.fields(st, k, interaction)
+    return make_result(h, substrate, p, deflection, offset, it, residual, status, message, tol,
+                       "preconditioned-cg", time.perf_counter() - t_start, repulsive=rep,
+                       attractive=att)  # fmt: skip
+
+
+def _outcome(code, it, best, floor_best, scale, substrate, tol):
+    """The :class:`SolveStatus` and message of the compiled loop's status ``code``, in the
+    NumPy loop's words."""
+    from . import _smooth_jax as sj
+
+    if code == sj.CONVERGED:
+        return SolveStatus.CONVERGED, "converged"
+    if code == sj.LIMIT:
+        return SolveStatus.ITERATION_LIMIT, "iteration cap reached"
+    if code == sj.STALLED:
+        return SolveStatus.STALLED, (
+            f"stalled at residual {best:.2g} for {STALL_PATIENCE} iterations: the float32 "
+            "rounding floor (use dtype='float64' or a larger tol)"
+        )
+    if code == sj.FLOOR:
+        floor = EPS64 * scale / substrate.contact_modulus
+        return SolveStatus.STALLED, (
+            f"stalled at the float64 rounding floor: residual {floor_best:.3g} (units of E*), "
+            f"pressure scale p = {scale:.3g} (max |p|), floor ~p·eps/E* = {floor:.3g}; no "
+            f"progress in {FLOOR_PATIENCE} iterations: the state is as accurate as float64 "
+            f"allows (tol {tol:g} is below what float64 resolves at this pressure)"
+        )
+    if code == sj.LINE_SEARCH_FAILED:
+        return SolveStatus.LINE_SEARCH_FAILED, f"line search failed at iteration {it}"
+    return SolveStatus.NON_FINITE, (
+        f"non-finite state at iteration {it} (check inputs and the interaction)"
+    )
+
+
+def solve_jax(heights, substrate, interaction, *, load, offset, **kwargs):
+    """:func:`.solve.solve` for an adhesive law on JAX heights: the compiled loop of the
+    law's kind, or a one-line :class:`ParameterError` for what has none yet."""
+    if interaction.hard_core or load is not None:
+        raise ParameterError(
+            "JAX heights are solved for the hard wall and, under displacement control, smooth "
+            f"laws (compiled loops); pass NumPy or CuPy heights for {type(interaction).__name__}"
+            + (" under load control" if load is not None else "")
+        )
+    return minimize_energy_jax(heights, substrate, interaction, offset=offset, **kwargs)
