@@ -10,6 +10,7 @@ when JAX heights arrive (this module is imported lazily by :mod:`.solve`).
 
 from __future__ import annotations
 
+import math
 import time
 
 import jax
@@ -17,14 +18,16 @@ import jax.numpy as jnp
 
 from .._validate import ParameterError
 from ._pk_jax import check_jax_inputs
+from .bounded_rules import ON_WALL
 from .fourier import compliance_operator
-from .inputs import check_problem, warm_deflection
+from .inputs import check_hard_wall_offset, check_problem, warm_deflection
+from .load_control import solve_at_load
 from .loop_control import STALL_PATIENCE
 from .observables import make_result
 from .result import SolveStatus
 from .smooth_rules import EPS64, FLOOR_PATIENCE, REFRESH_EVERY, RESTART_EVERY
 
-__all__ = ["minimize_energy_jax", "solve_jax"]
+__all__ = ["minimize_energy_bounded_jax", "minimize_energy_jax", "solve_jax"]
 
 
 def _initial_deflection(initial, substrate, h):
@@ -73,28 +76,29 @@ def minimize_energy_jax(
                 stall=dtype == "float32", floor=dtype == "float64")  # fmt: skip
     scalars = (st.it, st.residual, st.status, st.best, st.floor_best, jnp.max(jnp.abs(st.p)))
     it, residual, code, best, floor_best, scale = (x.item() for x in jax.device_get(scalars))
-    status, message = _outcome(code, it, best, floor_best, scale, substrate, tol)
+    names = {sj.CONVERGED: "converged", sj.LIMIT: "limit", sj.STALLED: "stalled",
+             sj.FLOOR: "floor", sj.LINE_SEARCH_FAILED: "line_search"}  # fmt: skip
+    status, message = _outcome(names.get(code, "non_finite"), it, best, floor_best, scale,
+                               substrate, tol)  # fmt: skip
     p, rep, att, deflection = sj.fields(st, k, interaction)
     return make_result(h, substrate, p, deflection, offset, it, residual, status, message, tol,
                        "preconditioned-cg", time.perf_counter() - t_start, repulsive=rep,
                        attractive=att)  # fmt: skip
 
 
-def _outcome(code, it, best, floor_best, scale, substrate, tol):
-    """The :class:`SolveStatus` and message of the compiled loop's status ``code``, in the
-    NumPy loop's words."""
-    from . import _smooth_jax as sj
-
-    if code == sj.CONVERGED:
+def _outcome(kind, it, best, floor_best, scale, substrate, tol):
+    """The :class:`SolveStatus` and message of a compiled loop's stop ``kind``, in the
+    NumPy loops' words."""
+    if kind == "converged":
         return SolveStatus.CONVERGED, "converged"
-    if code == sj.LIMIT:
+    if kind == "limit":
         return SolveStatus.ITERATION_LIMIT, "iteration cap reached"
-    if code == sj.STALLED:
+    if kind == "stalled":
         return SolveStatus.STALLED, (
             f"stalled at residual {best:.2g} for {STALL_PATIENCE} iterations: the float32 "
             "rounding floor (use dtype='float64' or a larger tol)"
         )
-    if code == sj.FLOOR:
+    if kind == "floor":
         floor = EPS64 * scale / substrate.contact_modulus
         return SolveStatus.STALLED, (
             f"stalled at the float64 rounding floor: residual {floor_best:.3g} (units of E*), "
@@ -102,20 +106,76 @@ def _outcome(code, it, best, floor_best, scale, substrate, tol):
             f"progress in {FLOOR_PATIENCE} iterations: the state is as accurate as float64 "
             f"allows (tol {tol:g} is below what float64 resolves at this pressure)"
         )
-    if code == sj.LINE_SEARCH_FAILED:
+    if kind == "line_search":
         return SolveStatus.LINE_SEARCH_FAILED, f"line search failed at iteration {it}"
+    if kind == "no_descent":
+        return SolveStatus.LINE_SEARCH_FAILED, (
+            f"no descent along the projected direction at iteration {it}"
+        )
     return SolveStatus.NON_FINITE, (
         f"non-finite state at iteration {it} (check inputs and the interaction)"
     )
 
 
+def minimize_energy_bounded_jax(
+    heights,
+    substrate,
+    interaction,
+    *,
+    offset,
+    initial=None,
+    tol=None,
+    max_iter=5000,
+    callback=None,
+    restart_every=RESTART_EVERY,
+    device=None,
+    dtype=None,
+):
+    """:func:`.bounded.minimize_energy_bounded` for JAX ``heights`` (length), compiled.
+
+    The same parameters, results and units (offset: length, at least mean(heights) with a
+    rigid mean; ``tol`` on the largest free-site force imbalance / E*); periodic
+    substrates only, no ``callback``, ``device`` None. Returns a :class:`ContactResult`
+    whose fields are JAX arrays on the heights' device (``pressure``: the traction).
+    """
+    from . import _bounded_jax as bj
+
+    t_start = time.perf_counter()
+    dtype = check_jax_inputs(heights, substrate, dtype, device, callback)
+    h, tol = check_problem(heights, substrate, tol, offset, None, dtype)
+    offset = float(offset)
+    (scale,) = check_hard_wall_offset(h, substrate, offset, also=["std"])
+    scale = scale or substrate.pixel_size
+    base = offset - h
+    if initial is None:
+        w = jnp.zeros_like(h)
+    else:
+        compliance = compliance_operator(substrate, work_grid=True)
+        w = jnp.reshape(warm_deflection(initial, substrate, h, compliance), h.shape)
+    st, k = bj.prepare(w, substrate, base=base, wall_tol=ON_WALL * scale, tol=tol,
+                       max_iter=int(max_iter), restart_every=int(restart_every))  # fmt: skip
+    st = bj.run(st, k, law=interaction, rigid=bool(substrate.rigid_mean), stall=dtype == "float32")
+    it, residual, code, best = (x.item() for x in jax.device_get(
+        (st.it, st.residual, st.status, st.best)))  # fmt: skip
+    names = {bj.CONVERGED: "converged", bj.LIMIT: "limit", bj.STALLED: "stalled",
+             bj.LINE_SEARCH_FAILED: "line_search", bj.NO_DESCENT: "no_descent"}  # fmt: skip
+    status, message = _outcome(names.get(code, "non_finite"), it, best, 0.0, 0.0, substrate, tol)
+    traction, rep, att, deflection = bj.fields(st, k, interaction)
+    return make_result(h, substrate, traction, deflection, offset, it, residual, status, message,
+                       tol, "bounded-cg", time.perf_counter() - t_start, repulsive=rep,
+                       attractive=att)  # fmt: skip
+
+
 def solve_jax(heights, substrate, interaction, *, load, offset, **kwargs):
     """:func:`.solve.solve` for an adhesive law on JAX heights: the compiled loop of the
-    law's kind, or a one-line :class:`ParameterError` for what has none yet."""
-    if interaction.hard_core or load is not None:
-        raise ParameterError(
-            "JAX heights are solved for the hard wall and, under displacement control, smooth "
-            f"laws (compiled loops); pass NumPy or CuPy heights for {type(interaction).__name__}"
-            + (" under load control" if load is not None else "")
-        )
-    return minimize_energy_jax(heights, substrate, interaction, offset=offset, **kwargs)
+    law's kind (smooth or hard-core) at an offset, or under load control the offset search
+    of :func:`.load_control.solve_at_load` around compiled solves (each warm-started on
+    the device from the nearest state)."""
+    minimize = minimize_energy_bounded_jax if interaction.hard_core else minimize_energy_jax
+    if offset is not None:
+        return minimize(heights, substrate, interaction, offset=offset, **kwargs)
+    if not math.isfinite(float(load)):
+        raise ParameterError(f"load must be finite, got {load!r}")
+    # the checks of the compiled loops first (one line each), then load control's
+    check_jax_inputs(heights, substrate, kwargs["dtype"], kwargs["device"], kwargs["callback"])
+    return solve_at_load(minimize, heights, substrate, interaction, load=load, **kwargs)

@@ -166,19 +166,19 @@ def _dot(a, b, acc):
     return jnp.sum(a.astype(acc) * b.astype(acc))
 
 
-def line_minimum(law, gap, s, c0, c1, slope0, acc):
+def line_minimum(law, gap, s, c0, c1, slope0, acc, rtol=LINE_SEARCH_RTOL):
     """:func:`.line_search.line_minimum` on the device: the step ``alpha`` along ``s`` from
     ``gap`` (NaN when no bracket is found) and the interaction pressure there.
 
     The directional slope is ``phi'(alpha) = c0 + alpha c1 - s.p_int(gap + alpha s)``
     (``c0 = s.K w``, ``c1 = s.K s``). The Newton guess with the curvature at 0, clipped to
-    [GUESS_MIN, GUESS_MAX], is taken when ``|phi'| <= LINE_SEARCH_RTOL |phi'(0)|``; else
+    [GUESS_MIN, GUESS_MAX], is taken when ``|phi'| <= rtol |phi'(0)|``; else
     the step doubles until the slope is not negative and :func:`.roots.bracketed_root`'s
     regula falsi with Anderson–Björck updates and bisection safeguards finds the root,
     in at most LINE_SEARCH_MAX_EVAL evaluations in all.
     """
     dt = gap.dtype
-    rtol_slope = LINE_SEARCH_RTOL * jnp.abs(slope0)
+    rtol_slope = rtol * jnp.abs(slope0)
 
     def slope(alpha):
         p = law.pressure(gap + alpha.astype(dt) * s)

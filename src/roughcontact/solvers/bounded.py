@@ -66,6 +66,7 @@ from ._blocks import Schedule
 from ._bounded_steps import _DeviceSteps
 from ._inplace import Workspace
 from ._projection import _direction_on_device, _projected_gradient_step, project_feasible
+from .bounded_rules import ON_WALL, PROJECTED_HALVINGS
 from .fourier import (
     compliance_operator,
     in_single_precision,
@@ -151,7 +152,7 @@ def minimize_energy_bounded(
     green = in_single_precision(compliance_operator(substrate, work_grid=True))
     stiff = stiffness_operator(substrate, work_grid=True)
     stiff_single = in_single_precision(stiff)
-    on_wall_tol = 1e-12 * scale
+    on_wall_tol = ON_WALL * scale
 
     def on_patch(x):
         return x if work is None else x[work.patch]
@@ -356,7 +357,7 @@ def minimize_energy_bounded(
         guess.clear()
         e_cur = energy(w, kw)  # (the energy is only needed here)
         # the step crosses the wall: project it, halve it while it does not lower E
-        for _ in range(6):
+        for _ in range(PROJECTED_HALVINGS):
             w_try = project_feasible(w + alpha * s, lower, rigid)
             kw_try = stiff(w_try)
             e_try = energy(w_try, kw_try)

@@ -6,6 +6,7 @@ import math
 
 from .._backend import constant
 from ._inplace import Workspace
+from .bounded_rules import BOUNDED_LINE_SEARCH_RTOL
 from .reductions import dot, fetch, on_device, vdot
 from .roots import bracketed_root
 from .smooth_rules import GUESS_MAX, GUESS_MIN, LINE_SEARCH_MAX_EVAL
@@ -56,7 +57,7 @@ def line_minimum(
     kw,
     ks,
     slope0,
-    rtol=1e-3,
+    rtol=BOUNDED_LINE_SEARCH_RTOL,
     max_eval=LINE_SEARCH_MAX_EVAL,
     with_pressure=False,
     work=None,
