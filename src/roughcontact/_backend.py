@@ -38,6 +38,7 @@ __all__ = [
     "is_array",
     "is_cupy_array",
     "is_numpy_array",
+    "jax_precision",
     "overlaps_fft",
     "rfft2",
     "to_device",
@@ -372,16 +373,41 @@ def to_device(x, device: str | None = None, dtype=None):
     return x if x.dtype == want else xp.astype(x, want)
 
 
-def _device_context(heights, device):
-    """The context that makes the computing GPU current (CuPy launches on the current one)."""
+def _device_context(heights, device, dtype=None):
+    """The context that makes the computing GPU current (CuPy launches on the current one);
+    for JAX heights the precision's (:func:`jax_precision`)."""
     if isinstance(device, str) and device.startswith("cuda"):
         cupy, index = _cupy(device)
         return cupy.cuda.Device(index)
     if device is None and is_cupy_array(heights):
         return heights.device
-    if is_jax_array(heights) and not sys.modules["jax"].config.jax_enable_x64:
-        return _jax_without_x64()
+    if is_jax_array(heights):
+        return jax_precision(heights, dtype)
     return contextlib.nullcontext()
+
+
+def jax_precision(heights, dtype=None):
+    """The context a solve on JAX ``heights`` runs in, so that float64 needs no global switch.
+
+    float64 (``dtype="float64"``, or float64 heights with ``dtype=None``) runs inside
+    ``jax.enable_x64(True)`` when JAX's ``jax_enable_x64`` is off: the result's fields are
+    then float64 JAX arrays (``result.to_numpy()`` keeps them so; JAX computes on them in
+    float64 only with x64 enabled). float32 runs with JAX's warnings about float64
+    reductions silenced (they are float32 there, as the solve's precision is). Heights
+    traced by ``jax.jit`` (or ``vmap``, ``grad``) get a one-line :class:`ParameterError`:
+    the solvers compile their own loops and read results on the host.
+    """
+    jax = sys.modules["jax"]
+    if isinstance(heights, jax.core.Tracer):
+        raise ParameterError(
+            "heights are traced by jax.jit (or vmap/grad): roughcontact's solvers compile "
+            "their own loop and return host values; call them outside jax.jit"
+        )
+    if jax.config.jax_enable_x64:
+        return contextlib.nullcontext()
+    if str(dtype if dtype is not None else heights.dtype) == "float64":
+        return jax.enable_x64(True)
+    return _jax_without_x64()
 
 
 @contextlib.contextmanager
@@ -390,7 +416,7 @@ def _jax_without_x64():
     reductions are float32 there (as the solve's precision is, which the docs state), and
     JAX's warning at each of them would only repeat that."""
     with warnings.catch_warnings():
-        warnings.filterwarnings("ignore", "Explicitly requested dtype float64", UserWarning)
+        warnings.filterwarnings("ignore", "Explicitly requested dtype u?(float|int)64", UserWarning)
         yield
 
 
@@ -403,7 +429,7 @@ def computes_on_heights_device(solver):
 
     @functools.wraps(solver)
     def wrapper(heights, *args, device=None, **kwargs):
-        with _device_context(heights, device):
+        with _device_context(heights, device, kwargs.get("dtype")):
             return solver(heights, *args, device=device, **kwargs)
 
     return wrapper

@@ -28,10 +28,11 @@ Differences from the other two loops, all deliberate:
   :func:`check_jax_inputs` says so), and no ``callback`` (it would need the host inside
   the loop).
 
-Precision: JAX computes in float32 unless ``jax.config.update("jax_enable_x64", True)``
-was called; roughcontact never changes that setting. float64 is then refused with a
-message saying how to enable it; with x64 enabled the sums are accumulated in float64
-(also for float32 fields, as the other loops do).
+Precision: JAX computes in float32 unless ``jax_enable_x64`` is on; roughcontact never
+changes that global setting. A float64 solve (``dtype="float64"``, or float64 heights)
+runs inside ``jax.enable_x64(True)`` instead (:func:`roughcontact._backend.jax_precision`,
+applied by the public entry points), so it needs no switch; there the sums are
+accumulated in float64 (also for float32 fields, as the other loops do).
 """
 
 from __future__ import annotations
@@ -76,8 +77,8 @@ def check_jax_inputs(heights, substrate, dtype, device, callback):
     if dtype is None:
         dtype = str(heights.dtype) if str(heights.dtype) in ("float32", "float64") else None
         dtype = dtype or ("float64" if x64_enabled() else "float32")
-    if str(dtype) == "float64" and not x64_enabled():
-        raise ParameterError(
+    if str(dtype) == "float64" and not x64_enabled():  # (public entries enable it: see
+        raise ParameterError(  # jax_precision; reached only by a direct internal call)
             "dtype float64 with JAX heights needs jax.config.update('jax_enable_x64', True) "
             "(or pass dtype='float32')"
         )

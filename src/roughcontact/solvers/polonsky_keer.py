@@ -81,7 +81,7 @@ loops take the same steps and report the same iterations (tested).
 
 A third, for heights given as a JAX array: the whole loop as one compiled program
 (:mod:`._pk_jax`, ``jax.jit`` and ``lax.while_loop``; periodic substrates, no callback,
-float64 only with ``jax_enable_x64``), which tests convergence on the device and returns
+float64 inside ``jax.enable_x64``), which tests convergence on the device and returns
 to the host only once it stops. jax is imported only when such heights arrive.
 """
 
