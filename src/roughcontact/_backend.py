@@ -13,7 +13,6 @@ import contextlib
 import functools
 import os
 import sys
-import warnings
 
 import array_api_compat
 import numpy as np
@@ -389,11 +388,13 @@ def _device_context(heights, device, dtype=None):
 def jax_precision(heights, dtype=None):
     """The context a solve on JAX ``heights`` runs in, so that float64 needs no global switch.
 
-    float64 (``dtype="float64"``, or float64 heights with ``dtype=None``) runs inside
-    ``jax.enable_x64(True)`` when JAX's ``jax_enable_x64`` is off: the result's fields are
-    then float64 JAX arrays (``result.to_numpy()`` keeps them so; JAX computes on them in
-    float64 only with x64 enabled). float32 runs with JAX's warnings about float64
-    reductions silenced (they are float32 there, as the solve's precision is). Heights
+    When JAX's ``jax_enable_x64`` is off, every solve runs inside ``jax.enable_x64(True)``
+    (the global setting is left alone): float64 (``dtype="float64"``, or float64 heights
+    with ``dtype=None``) then computes in float64, its fields float64 JAX arrays
+    (``result.to_numpy()`` keeps them so; JAX computes on them in float64 only with x64
+    enabled), and float32 (float32 heights, the default there) keeps float32 fields with
+    its sums accumulated in float64, as the NumPy loops and an x64 session do (float32
+    sums made the bounded solver's energy test fail at the rounding level). Heights
     traced by ``jax.jit`` (or ``vmap``, ``grad``) get a one-line :class:`ParameterError`:
     the solvers compile their own loops and read results on the host.
     """
@@ -405,19 +406,7 @@ def jax_precision(heights, dtype=None):
         )
     if jax.config.jax_enable_x64:
         return contextlib.nullcontext()
-    if str(dtype if dtype is not None else heights.dtype) == "float64":
-        return jax.enable_x64(True)
-    return _jax_without_x64()
-
-
-@contextlib.contextmanager
-def _jax_without_x64():
-    """JAX without ``jax_enable_x64`` has no float64: the core's float64 accumulations of
-    reductions are float32 there (as the solve's precision is, which the docs state), and
-    JAX's warning at each of them would only repeat that."""
-    with warnings.catch_warnings():
-        warnings.filterwarnings("ignore", "Explicitly requested dtype u?(float|int)64", UserWarning)
-        yield
+    return jax.enable_x64(True)
 
 
 def computes_on_heights_device(solver):
