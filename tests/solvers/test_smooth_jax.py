@@ -110,3 +110,15 @@ def test_float32_converges(x32):
     ref = rc.solve(h, sub, LAW, offset=d)
     assert rel_l2(res.pressure, ref.pressure) <= 1e-4
     assert abs(res.repulsive_area - ref.repulsive_area) * h.size <= 3
+
+
+def test_float64_floor_guard_as_the_numpy_loop(x64):
+    # deep compression (pressures ~1e9 E*): both loops stop at the rounding floor, alike
+    h = rc.self_affine((64, 64), hurst=0.8, rms_slope=0.1, short_cutoff=4.0, seed=1)
+    sub = rc.Substrate((64, 64))
+    law = rc.SmoothLJ93(contact_modulus=1.0, pixel_size=1.0, work_of_adhesion=0.05)
+    ref = rc.solve(h, sub, law, offset=float(h.max()) - 0.7)
+    res = rc.solve(jnp.asarray(h), sub, law, offset=float(h.max()) - 0.7)
+    assert ref.status is res.status is rc.SolveStatus.STALLED
+    assert res.message.startswith("stalled at the float64 rounding floor"), res.message
+    assert res.iterations == pytest.approx(ref.iterations, rel=0.25)

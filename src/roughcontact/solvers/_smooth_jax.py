@@ -321,7 +321,8 @@ def run(st, k, *, law, rigid, stall, floor):
             halved = best < 0.5 * st.reference
             since = jnp.where(halved, 0, st.floor_since + 1)
             due = ~halved & (since >= FLOOR_PATIENCE)
-            scale = jnp.max(jnp.abs(st.p)).astype(acc)
+            scale = lax.cond(due, lambda: jnp.max(jnp.abs(st.p)).astype(acc),
+                             lambda: jnp.zeros((), acc))  # (a pass only when due)  # fmt: skip
             at_floor = due & (best <= FLOOR_ULPS * (EPS64 * scale / k.modulus))
             renew = halved | (due & ~at_floor)  # slow but above the floor: a new window
             st = st._replace(floor_best=best, reference=jnp.where(renew, best, st.reference),

@@ -38,7 +38,9 @@ def solve(
     ----------
     heights : (nx, ny) array
         Heights ``h`` of the rigid surface (length); it sits at ``z = d - h``, so maxima
-        of ``h`` are the summits touching first.
+        of ``h`` are the summits touching first. A JAX array runs the compiled loops
+        (one ``jax.jit`` program per solve; periodic substrates, no ``callback``; see
+        the README's "Compiled loops (JAX)").
     substrate : Substrate
         Elastic substrate (shape must match ``heights``).
     interaction : HardWall or an interaction law, optional
