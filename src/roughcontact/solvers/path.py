@@ -166,8 +166,25 @@ def approach_retract(
     attrs |= {"dtype": dtype, "device": str(array_device(heights))}
     rows, previous, t0 = [], None, time.perf_counter()
     saved = t0
+    # (row, its patch count and largest change of the deflection, the jump threshold):
+    # device scalars off NumPy, read for every state since the last in one transfer when a
+    # dataset is made, so a state's solve is its only read of the device
+    pending = []
+
+    def settle():
+        if not pending:
+            return
+        xp = array_namespace(previous.deflection)
+        values = fetch(xp, [v for _, patches, dw, _ in pending for v in (patches, dw)])
+        for (row, _, _, threshold), patches, dw in zip(
+            pending, values[::2], values[1::2], strict=True
+        ):
+            row["repulsive_patches"] = int(patches)
+            row["jump"] = threshold is not None and bool(dw > threshold)
+        pending.clear()
 
     def dataset():
+        settle()
         reached = until_area is not None and any(
             r["repulsive_area"] >= until_area for r in rows[: plan.approach_steps or None]
         )
@@ -194,19 +211,15 @@ def approach_retract(
             row["status"] = res.status.value
             # counted on the device: a step copies no field to the host (only fields_at);
             # on a free boundary patches do not wrap. The count and the largest change of
-            # the deflection come over in one transfer (JAX: both device scalars)
+            # the deflection are read later (settle; on JAX both device scalars)
             xp = array_namespace(res.deflection)
             patches = patch_count(res.pressure > 0, periodic=substrate.periodic)
-            dw = 0.0
+            dw, threshold = 0.0, None
             if previous is not None:
                 dw = xp.max(xp.abs(res.deflection - previous.deflection))
-            patches, dw = fetch(xp, [patches, dw])
-            row["repulsive_patches"] = int(patches)
-            if previous is None:
-                row["jump"] = False
-            else:
-                dd = abs(res.offset - previous.offset)
-                row["jump"] = bool(dw > jump_factor * dd + jump_length)
+                threshold = jump_factor * abs(res.offset - previous.offset) + jump_length
+            row["repulsive_patches"], row["jump"] = 0, False  # (until settled)
+            pending.append((row, patches, dw, threshold))
             rows.append(row)
             plan.keep(step, (res.pressure, res.gap, res.deflection))
             if until_area is not None and plan.approach_steps is None:
