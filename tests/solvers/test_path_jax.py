@@ -69,3 +69,21 @@ def test_patch_count_on_the_device():
             on_device = patch_count(jnp.asarray(mask), periodic=periodic)
             assert isinstance(on_device, jax.Array)  # fetched with the state's numbers
             assert int(on_device) == count_patches(mask, periodic=periodic)
+
+
+def test_one_read_per_state(x64, monkeypatch):
+    # the states' solves read their outcome with their record, and the path's patch counts
+    # and jumps come in one read when the dataset is made: reads = states + 2 (the heights'
+    # statistics once, the patch counts and jumps once)
+    import roughcontact.solvers.reductions as reductions
+
+    h, sub = rough()
+    law = rc.SmoothLJ93.from_adhesion_length(0.05)
+    offsets = np.linspace(h.max() + 1.0, h.max() - 1.5 * h.std(), 4)
+    rc.approach_retract(jnp.asarray(h), sub, law, offsets=offsets)  # compiles
+    reads = []
+    to_numpy = reductions.to_numpy
+    monkeypatch.setattr(reductions, "to_numpy", lambda x: reads.append(x.shape) or to_numpy(x))
+    path = rc.approach_retract(jnp.asarray(h), sub, law, offsets=offsets)
+    assert path.sizes["step"] == 7
+    assert len(reads) <= 7 + 2, reads

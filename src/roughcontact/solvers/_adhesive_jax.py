@@ -13,12 +13,10 @@ from __future__ import annotations
 import math
 import time
 
-import jax
 import jax.numpy as jnp
 
 from .._validate import ParameterError
 from ._pk_jax import check_jax_inputs
-from ._smooth_jax import accumulation_dtype
 from .bounded_rules import ON_WALL
 from .fourier import compliance_operator
 from .inputs import check_hard_wall_offset, check_problem, warm_deflection
@@ -75,25 +73,21 @@ def minimize_energy_jax(
                        warm=initial is not None)  # fmt: skip
     st = sj.run(st, k, law=interaction, rigid=bool(substrate.rigid_mean),
                 stall=dtype == "float32", floor=dtype == "float64")  # fmt: skip
-    scalars = (st.it, st.residual, st.status, st.best, st.floor_best, jnp.max(jnp.abs(st.p)))
-    it, residual, code, best, floor_best, scale = _read(scalars)
     names = {sj.CONVERGED: "converged", sj.LIMIT: "limit", sj.STALLED: "stalled",
              sj.FLOOR: "floor", sj.LINE_SEARCH_FAILED: "line_search"}  # fmt: skip
-    status, message = _outcome(names.get(code, "non_finite"), it, best, floor_best, scale,
-                               substrate, tol)  # fmt: skip
+
+    def resolve(values):  # the loop's outcome, read with the record (one transfer)
+        it, residual, code, best, floor_best, scale = values
+        it, code = int(it), int(code)
+        status, message = _outcome(names.get(code, "non_finite"), it, best, floor_best, scale,
+                                   substrate, tol)  # fmt: skip
+        return it, residual, status, message
+
+    scalars = (st.it, st.residual, st.status, st.best, st.floor_best, jnp.max(jnp.abs(st.p)))
     p, rep, att, deflection = sj.fields(st, k, interaction)
-    return make_result(h, substrate, p, deflection, offset, it, residual, status, message, tol,
+    return make_result(h, substrate, p, deflection, offset, 0, 0.0, None, "", tol,
                        "preconditioned-cg", time.perf_counter() - t_start, repulsive=rep,
-                       attractive=att)  # fmt: skip
-
-
-def _read(scalars):
-    """The host's one read of a finished loop: its 0-d scalars, stacked (in the widest
-    float dtype, exact for the counts) into one transfer; the counts come back as ints."""
-    wide = jnp.stack([jnp.asarray(x, dtype=accumulation_dtype()) for x in scalars])
-    values = jax.device_get(wide).tolist()
-    return [int(v) if jnp.issubdtype(x.dtype, jnp.integer) else v
-            for v, x in zip(values, scalars, strict=True)]  # fmt: skip
+                       attractive=att, outcome=(scalars, resolve))  # fmt: skip
 
 
 def _outcome(kind, it, best, floor_best, scale, substrate, tol):
@@ -165,14 +159,21 @@ def minimize_energy_bounded_jax(
     st, k = bj.prepare(w, substrate, base=base, wall_tol=ON_WALL * scale, tol=tol,
                        max_iter=int(max_iter), restart_every=int(restart_every))  # fmt: skip
     st = bj.run(st, k, law=interaction, rigid=bool(substrate.rigid_mean), stall=dtype == "float32")
-    it, residual, code, best = _read((st.it, st.residual, st.status, st.best))
     names = {bj.CONVERGED: "converged", bj.LIMIT: "limit", bj.STALLED: "stalled",
              bj.LINE_SEARCH_FAILED: "line_search", bj.NO_DESCENT: "no_descent"}  # fmt: skip
-    status, message = _outcome(names.get(code, "non_finite"), it, best, 0.0, 0.0, substrate, tol)
+
+    def resolve(values):  # the loop's outcome, read with the record (one transfer)
+        it, residual, code, best = values
+        it, code = int(it), int(code)
+        status, message = _outcome(names.get(code, "non_finite"), it, best, 0.0, 0.0, substrate,
+                                   tol)  # fmt: skip
+        return it, residual, status, message
+
     traction, rep, att, deflection = bj.fields(st, k, interaction)
-    return make_result(h, substrate, traction, deflection, offset, it, residual, status, message,
-                       tol, "bounded-cg", time.perf_counter() - t_start, repulsive=rep,
-                       attractive=att)  # fmt: skip
+    return make_result(h, substrate, traction, deflection, offset, 0, 0.0, None, "", tol,
+                       "bounded-cg", time.perf_counter() - t_start, repulsive=rep,
+                       attractive=att,
+                       outcome=((st.it, st.residual, st.status, st.best), resolve))  # fmt: skip
 
 
 def solve_jax(heights, substrate, interaction, *, load, offset, **kwargs):

@@ -26,10 +26,14 @@ def make_result(
     seconds,
     repulsive=None,
     attractive=None,
+    outcome=None,
 ):
     """Build the result record; ``repulsive``/``attractive`` masks default to p > 0 / none.
 
-    ``status`` (a :class:`SolveStatus`) gives ``converged``.
+    ``status`` (a :class:`SolveStatus`) gives ``converged``. ``outcome``: ``(scalars,
+    resolve)``, a loop's device scalars read in the record's one transfer and
+    ``resolve(values) -> (iterations, residual, status, message)`` of their values, which
+    replace the positional ones (a compiled loop whose outcome is read with its record).
 
     The fields stay on the heights' backend and device (no copy to the host: a path on a
     GPU warm-starts each step from the last one there); the scalars are reduced there
@@ -53,8 +57,11 @@ def make_result(
         xp.sum(p_rep, dtype=f64), xp.sum(p_att, dtype=f64),
         xp.sum(pressure, dtype=f64), xp.sum(gap, dtype=f64), xp.count_nonzero(repulsive),
         xp.count_nonzero(attractive), boundary_bonds(repulsive, periodic=substrate.periodic),
+        *(() if outcome is None else outcome[0]),
     ])  # fmt: skip
-    p_rep, p_att, p_all, gap_sum, n_rep, n_att, edges = sums
+    if outcome is not None:
+        iterations, residual, status, message = outcome[1](sums[7:])
+    p_rep, p_att, p_all, gap_sum, n_rep, n_att, edges = sums[:7]
     edges = int(edges)
     a0 = substrate.pixel_size
     return ContactResult(
