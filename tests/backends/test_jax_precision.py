@@ -57,6 +57,9 @@ def test_float32_mode_converges(x32):
         assert res.converged, res.message
         ref = rc.solve(h, sub, law, offset=d)
         assert abs(res.repulsive_area - ref.repulsive_area) * h.size <= 3
+    res = rc.solve(jnp.asarray(h), sub, LAW, load=0.01)  # load control: the same precision
+    assert res.pressure.dtype == jnp.float32 and res.converged, res.message
+    assert res.load == pytest.approx(0.01, rel=1e-4)
 
 
 @pytest.mark.parametrize("x64", [False, True])

@@ -186,6 +186,9 @@ def solve_jax(heights, substrate, interaction, *, load, offset, **kwargs):
         return minimize(heights, substrate, interaction, offset=offset, **kwargs)
     if not math.isfinite(float(load)):
         raise ParameterError(f"load must be finite, got {load!r}")
-    # the checks of the compiled loops first (one line each), then load control's
-    check_jax_inputs(heights, substrate, kwargs["dtype"], kwargs["device"], kwargs["callback"])
+    # the checks of the compiled loops first (one line each), then load control's; the
+    # precision as at an offset (default: the heights' own)
+    kwargs["dtype"] = check_jax_inputs(
+        heights, substrate, kwargs["dtype"], kwargs["device"], kwargs["callback"]
+    )
     return solve_at_load(minimize, heights, substrate, interaction, load=load, **kwargs)
