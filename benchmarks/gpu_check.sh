@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
-# Issue 34's GPU check in one script: the GPU tests, benchmarks/gpu.py at 1024²-4096²
-# (float64 and float32, ms per iteration and cuFFT pairs, GPU/CPU at 2048²; the hard
-# wall's jax.jit loop beside them), the 4096²
-# paper task with its analysis, a 512² task on the GPU against one CPU core, the 41-state
-# 4096² path and the task through the real Dask path. Each step has its own time limit,
+# Issue 34's and 38's GPU check in one script: the GPU tests (the compiled JAX loops'
+# included), benchmarks/gpu.py at 1024²-4096² (float64 and float32, ms per iteration and
+# cuFFT pairs, GPU/CPU at 2048²; the compiled loops of every solver, --backend jax:
+# hard wall, smoothed 9-3 wall, Maugis-Dugdale, per iteration / rfft2+irfft2 pair, their
+# GPU/CPU ratio at 2048², JAX's peak memory, float32), the 4096² paper task with its
+# analysis, a 512² task on the GPU against one CPU core, the 41-state 4096² path (CuPy and
+# JAX heights) and the task through the real Dask path. Each step has its own time limit,
 # so a slow one does not take the rest with it; everything goes to $LOG.
 #
 #   benchmarks/gpu_check.sh                         # on a GPU machine, from the repo root
@@ -12,6 +14,11 @@
 #   PART=quick benchmarks/gpu_check.sh              # tests + float64 sizes only
 #   PART=second benchmarks/gpu_check.sh             # GPU side only: tests, float64 and
 #                                                   # float32 sizes, 4096² task and path
+#   PART=jax benchmarks/gpu_check.sh                # issue 38 (<= 9 min): the compiled
+#                                                   # loops' tests, float64/float32 sizes
+#                                                   # (GPU/CPU at CPU_SIZE), JAX path
+# Two device calls of <= 9 minutes: PART=jax, then PART=second (the paper task and the
+# 512² task on the GPU; PART=all adds the 512² task on one CPU core and the Dask study).
 set -u -o pipefail
 export PYTHONUNBUFFERED=1
 PY=${PY:-python3}
@@ -41,6 +48,25 @@ step() {  # step SECONDS TITLE COMMAND...: run with a limit, log the time it too
     fi
     $PY -c "import sys, numpy, scipy, array_api_compat, roughcontact; print(sys.version.split()[0], 'numpy', numpy.__version__, 'scipy', scipy.__version__, 'array_api_compat', array_api_compat.__version__, roughcontact.__file__)"
     [ "$DEVICE" != cpu ] && $PY -c "import cupy; print('cupy', cupy.__version__)"
+    cpu=(--cpu-sizes)
+    [ -n "$CPU_SIZE" ] && [ "$PART" != second ] && cpu=(--cpu-sizes "$CPU_SIZE" --cpu-repeats 1)
+    if [ "$PART" = jax ] || [ "$PART" = all ]; then  # issue 38: the compiled loops (JAX)
+        step 120 "GPU tests, compiled loops" $PY -m pytest -q -p no:cacheprovider \
+            tests/solvers/test_pk_jax.py tests/solvers/test_smooth_jax.py \
+            tests/solvers/test_bounded_jax.py -k "no_host_transfer or same_answer"
+        # shellcheck disable=SC2086
+        step 210 "gpu.py jax float64 (every compiled loop, GPU/CPU at $CPU_SIZE²)" $PY \
+            benchmarks/gpu.py --backend jax --device "$DEVICE" --sizes $SIZES "${cpu[@]}" \
+            --path-size 0 --repeats 3 --json "$OUTDIR/gpu_jax.json"
+        # shellcheck disable=SC2086
+        step 120 "gpu.py jax float32 (every compiled loop)" $PY benchmarks/gpu.py \
+            --backend jax --device "$DEVICE" --sizes $SIZES --cpu-sizes --path-size 0 \
+            --repeats 2 --dtype float32 --json "$OUTDIR/gpu_jax32.json"
+        step 90 "41-state path ${PATH_SIZE}² on JAX heights" $PY benchmarks/gpu.py \
+            --backend jax --device "$DEVICE" --sizes --cpu-sizes --path-size "$PATH_SIZE" \
+            --json "$OUTDIR/path_jax.json"
+        [ "$PART" = jax ] && echo "=== done $(date -u)" && exit 0
+    fi
     step 90 "GPU tests" $PY -m pytest -q -p no:cacheprovider \
         tests/backends/test_cupy.py tests/backends/test_device_detection.py tests/solvers/test_pk_jax.py
     cpu=(--cpu-sizes)
@@ -48,10 +74,6 @@ step() {  # step SECONDS TITLE COMMAND...: run with a limit, log the time it too
     # shellcheck disable=SC2086
     step 150 "gpu.py float64" $PY benchmarks/gpu.py --device "$DEVICE" --sizes $SIZES \
         "${cpu[@]}" --path-size 0 --repeats 3 --json "$OUTDIR/gpu64.json"
-    # shellcheck disable=SC2086
-    step 120 "gpu.py jax (hard wall, compiled loop)" $PY benchmarks/gpu.py --backend jax \
-        --device "$DEVICE" --sizes $SIZES --cpu-sizes --path-size 0 --repeats 3 \
-        --json "$OUTDIR/gpu_jax.json"
     [ "$PART" = quick ] && exit 0
     if [ "$PART" = second ]; then  # a later, shorter run: the GPU side only
         step 100 "paper task ${TASK_SIZE}² on $DEVICE" $PY benchmarks/gpu_task.py \

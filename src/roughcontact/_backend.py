@@ -13,7 +13,6 @@ import contextlib
 import functools
 import os
 import sys
-import warnings
 
 import array_api_compat
 import numpy as np
@@ -38,6 +37,7 @@ __all__ = [
     "is_array",
     "is_cupy_array",
     "is_numpy_array",
+    "jax_precision",
     "overlaps_fft",
     "rfft2",
     "to_device",
@@ -71,14 +71,16 @@ _NAMESPACES: dict = {}
 
 
 def constant(value: float, like):
-    """``value`` as an operand of ``like``: the Python float on NumPy (and with a Python or
-    NumPy scalar ``like``), elsewhere a cached
+    """``value`` as an operand of ``like``: the Python float on NumPy and JAX (and with a
+    Python or NumPy scalar ``like``), elsewhere a cached
     array of shape ``(1,) * like.ndim`` in ``like``'s dtype on its device (the same
     values: a Python scalar operand takes the array's dtype; array_api_strict converts a
     Python scalar at every use, two arrays more per operation, which this avoids)."""
     if type(like) is np.ndarray or isinstance(like, (float, int, np.generic)):
         return value  # (the common NumPy case first: the laws call this per operation)
-    if is_numpy_array(like):
+    if is_numpy_array(like) or is_jax_array(like):
+        # JAX: a Python scalar is weakly typed (it takes the array's dtype), and a cached
+        # array made while a compiled program is traced would leak the tracer
         return value
     xp = array_namespace(like)
     key = (type(like), like.dtype, array_device(like), like.ndim, float(value).hex())
@@ -370,26 +372,41 @@ def to_device(x, device: str | None = None, dtype=None):
     return x if x.dtype == want else xp.astype(x, want)
 
 
-def _device_context(heights, device):
-    """The context that makes the computing GPU current (CuPy launches on the current one)."""
+def _device_context(heights, device, dtype=None):
+    """The context that makes the computing GPU current (CuPy launches on the current one);
+    for JAX heights the precision's (:func:`jax_precision`)."""
     if isinstance(device, str) and device.startswith("cuda"):
         cupy, index = _cupy(device)
         return cupy.cuda.Device(index)
     if device is None and is_cupy_array(heights):
         return heights.device
-    if is_jax_array(heights) and not sys.modules["jax"].config.jax_enable_x64:
-        return _jax_without_x64()
+    if is_jax_array(heights):
+        return jax_precision(heights, dtype)
     return contextlib.nullcontext()
 
 
-@contextlib.contextmanager
-def _jax_without_x64():
-    """JAX without ``jax_enable_x64`` has no float64: the core's float64 accumulations of
-    reductions are float32 there (as the solve's precision is, which the docs state), and
-    JAX's warning at each of them would only repeat that."""
-    with warnings.catch_warnings():
-        warnings.filterwarnings("ignore", "Explicitly requested dtype float64", UserWarning)
-        yield
+def jax_precision(heights, dtype=None):
+    """The context a solve on JAX ``heights`` runs in, so that float64 needs no global switch.
+
+    When JAX's ``jax_enable_x64`` is off, every solve runs inside ``jax.enable_x64(True)``
+    (the global setting is left alone): float64 (``dtype="float64"``, or float64 heights
+    with ``dtype=None``) then computes in float64, its fields float64 JAX arrays
+    (``result.to_numpy()`` keeps them so; JAX computes on them in float64 only with x64
+    enabled), and float32 (float32 heights, the default there) keeps float32 fields with
+    its sums accumulated in float64, as the NumPy loops and an x64 session do (float32
+    sums made the bounded solver's energy test fail at the rounding level). Heights
+    traced by ``jax.jit`` (or ``vmap``, ``grad``) get a one-line :class:`ParameterError`:
+    the solvers compile their own loops and read results on the host.
+    """
+    jax = sys.modules["jax"]
+    if isinstance(heights, jax.core.Tracer):
+        raise ParameterError(
+            "heights are traced by jax.jit (or vmap/grad): roughcontact's solvers compile "
+            "their own loop and return host values; call them outside jax.jit"
+        )
+    if jax.config.jax_enable_x64:
+        return contextlib.nullcontext()
+    return jax.enable_x64(True)
 
 
 def computes_on_heights_device(solver):
@@ -401,7 +418,7 @@ def computes_on_heights_device(solver):
 
     @functools.wraps(solver)
     def wrapper(heights, *args, device=None, **kwargs):
-        with _device_context(heights, device):
+        with _device_context(heights, device, kwargs.get("dtype")):
             return solver(heights, *args, device=device, **kwargs)
 
     return wrapper

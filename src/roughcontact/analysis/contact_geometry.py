@@ -15,7 +15,7 @@ exception is :func:`contact_patches`, whose labelled map is NumPy (scipy.ndimage
 from __future__ import annotations
 
 import numpy as np
-from array_api_compat import is_array_api_obj
+from array_api_compat import is_array_api_obj, is_jax_array  # (imports no jax)
 
 from .._backend import array_device, array_namespace, is_numpy_array, to_numpy
 from .._validate import ParameterError, positive
@@ -205,6 +205,17 @@ def contact_patches(mask, *, periodic: bool = True):
     return relabel[inverse].reshape(m.shape), counts[keep][order]
 
 
+def patch_count(mask, *, periodic: bool = True):
+    """:func:`count_patches`, as a 0-d integer array on the device of a JAX ``mask`` (a
+    compiled count: no host sync, for a caller that fetches it with other scalars);
+    an int for every other backend."""
+    if is_jax_array(mask):
+        from ._patches_jax import count_patches_jax
+
+        return count_patches_jax(_mask2d(mask), bool(periodic))
+    return count_patches(mask, periodic=periodic)
+
+
 def count_patches(mask, *, periodic: bool = True) -> int:
     """Number of connected patches of ``mask`` (4-neighbour connectivity), on its device.
 
@@ -231,6 +242,8 @@ def count_patches(mask, *, periodic: bool = True) -> int:
         If ``mask`` is not two-dimensional.
     """
     m = _mask2d(mask)
+    if is_jax_array(m):  # a compiled count (:mod:`._patches_jax`)
+        return int(patch_count(m, periodic=periodic))
     if is_numpy_array(m):
         from scipy.ndimage import label
     elif type(m).__module__.split(".")[0] == "cupy":

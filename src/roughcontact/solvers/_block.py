@@ -8,12 +8,9 @@ from __future__ import annotations
 from .._backend import array_device, in_background
 from ._inplace import Workspace
 from .reductions import total, vdot, vtotal
+from .smooth_rules import STIFF_FRACTION
 
 __all__ = ["STIFF_FRACTION"]
-
-#: A site is "stiff" for the preconditioner when V''(g) exceeds this fraction of the
-#: substrate's self-stiffness K_ii (0.02-0.3 measured equally good; see :mod:`.smooth`).
-STIFF_FRACTION = 0.1
 
 
 def _stiff_sites(interaction, gap, self_stiffness, work=None):

@@ -28,10 +28,11 @@ Differences from the other two loops, all deliberate:
   :func:`check_jax_inputs` says so), and no ``callback`` (it would need the host inside
   the loop).
 
-Precision: JAX computes in float32 unless ``jax.config.update("jax_enable_x64", True)``
-was called; roughcontact never changes that setting. float64 is then refused with a
-message saying how to enable it; with x64 enabled the sums are accumulated in float64
-(also for float32 fields, as the other loops do).
+Precision: JAX computes in float32 unless ``jax_enable_x64`` is on; roughcontact never
+changes that global setting. A float64 solve (``dtype="float64"``, or float64 heights)
+runs inside ``jax.enable_x64(True)`` instead (:func:`roughcontact._backend.jax_precision`,
+applied by the public entry points), so it needs no switch; there the sums are
+accumulated in float64 (also for float32 fields, as the other loops do).
 """
 
 from __future__ import annotations
@@ -44,7 +45,7 @@ import jax.numpy as jnp
 from jax import lax
 
 from .._validate import ParameterError
-from .loop_control import RELIABLE_EVERY
+from .loop_control import RELIABLE_EVERY, STALL_IMPROVEMENT, STALL_PATIENCE
 from .pk_rules import JOINING_KEEPS_DIRECTIONS, RESUME_PRECONDITIONING
 from .result import SolveStatus
 
@@ -53,9 +54,6 @@ __all__ = ["State", "check_jax_inputs", "iterate_jax", "prepare", "run"]
 _STIFFNESS, _COMPLIANCE = 0, 1  # the fields of FourierMultipliers
 #: The status codes the loop leaves in ``State.status``.
 RUNNING, CONVERGED, LIMIT, STALLED, NON_FINITE, BREAKDOWN, NO_CONTACT = range(7)
-#: The float32 stall guard (as :class:`.loop_control.StallGuard`): stop after this many
-#: iterations without a 1 % improvement of the best residual.
-STALL_PATIENCE = 200
 
 
 def x64_enabled() -> bool:
@@ -79,8 +77,8 @@ def check_jax_inputs(heights, substrate, dtype, device, callback):
     if dtype is None:
         dtype = str(heights.dtype) if str(heights.dtype) in ("float32", "float64") else None
         dtype = dtype or ("float64" if x64_enabled() else "float32")
-    if str(dtype) == "float64" and not x64_enabled():
-        raise ParameterError(
+    if str(dtype) == "float64" and not x64_enabled():  # (public entries enable it: see
+        raise ParameterError(  # jax_precision; reached only by a direct internal call)
             "dtype float64 with JAX heights needs jax.config.update('jax_enable_x64', True) "
             "(or pass dtype='float32')"
         )
@@ -260,7 +258,7 @@ def run(st, k, *, load, precondition, rigid_mean, stall):
         best, since = st.best, st.since
         stalled = jnp.zeros((), dtype=bool)
         if stall:
-            improved = residual < 0.99 * best
+            improved = residual < STALL_IMPROVEMENT * best
             best = jnp.where(improved, residual, best)
             since = jnp.where(improved, 0, since + 1)
             stalled = since >= STALL_PATIENCE

@@ -8,6 +8,7 @@ from __future__ import annotations
 import math
 
 from .._backend import array_device, array_namespace, is_numpy_array
+from .bounded_rules import GRADIENT_HALVINGS, PROJECTION_MAX_STEPS, PROJECTION_RTOL
 from .line_search import line_minimum
 from .reductions import dot as _dot
 from .reductions import fetch, total, vdot, vtotal
@@ -30,12 +31,12 @@ def project_feasible(v, lower, zero_mean: bool):
     lam, lower_sum, v_sum = float(xp.mean(v)), total(xp.abs(lower)), total(xp.abs(v))
     lam, scale = -lam, lower_sum + v_sum + 1e-300
     best, u_best = math.inf, None
-    for _ in range(200):
+    for _ in range(PROJECTION_MAX_STEPS):
         u = xp.maximum(v + lam, lower)
         f = total(u)
         if abs(f) >= best:  # no better at the precision of v (float32 stops here)
             return u_best
-        if abs(f) <= 1e-13 * scale:
+        if abs(f) <= PROJECTION_RTOL * scale:
             break
         best, u_best = abs(f), u
         count = int(xp.count_nonzero(v + lam > lower))
@@ -82,7 +83,7 @@ def _project_on_device(v, lower, xp):
             done += 1
             if abs(f) >= best:  # no better at the precision of v (float32 stops here)
                 return u_best
-            if abs(f) <= 1e-13 * scale or done >= 200:
+            if abs(f) <= PROJECTION_RTOL * scale or done >= PROJECTION_MAX_STEPS:
                 return u
             best, u_best = abs(f), u
         steps, lam = ahead(lam)
@@ -117,7 +118,7 @@ def _projected_gradient_step(w, kw, rr, e_cur, lower, rigid, stiff, energy, inte
     ks = stiff(s)
     alpha = line_minimum(interaction, gap, s, kw, ks, -_dot(rr, rr), work=work)
     alpha = alpha if math.isfinite(alpha) and alpha > 0 else 1.0
-    for _ in range(40):
+    for _ in range(GRADIENT_HALVINGS):
         w_try = project_feasible(w + alpha * s, lower, rigid)
         kw_try = stiff(w_try)
         e_try = energy(w_try, kw_try)

@@ -196,13 +196,24 @@ def floor_verdict(best, own_pressure, physical_scale, contact_modulus, tol, pati
             f"progress in {patience} iterations; tol {tol:g} is not reached (use tol >= "
             f"{2 * best:.1g})"
         )
-    return "runaway", (
+    return "runaway", runaway_message(own_pressure, physical_scale, contact_modulus, best)
+
+
+def runaway_message(own_pressure, physical_scale, contact_modulus, residual):
+    """The message of a runaway: pressures ``own_pressure`` (largest |p|) above
+    :data:`RUNAWAY_RATIO` times ``physical_scale`` (:func:`physical_pressure_scale`), beyond
+    any elastic equilibrium, whatever the residual says (in float32 the force balance of
+    1e13 E* pressures can round to exactly 0). None when the pressures are physical."""
+    ratio = own_pressure / max(physical_scale, 1e-300)
+    if not ratio > RUNAWAY_RATIO:
+        return None
+    return (
         f"runaway: pressures reach {own_pressure / contact_modulus:.3g} E* (max |p|), "
         f"{ratio:.2g} times the physical scale P = {physical_scale:.3g} (E*·h'rms or the "
         "law's largest attraction, plus |load|): beyond any elastic equilibrium. The "
-        f"residual stopped at {best:.3g} E* (float64's floor at those pressures), far above "
-        "a force balance on the scale P; the offset pushes the surfaces through each other "
-        "(below full contact): not an equilibrium"
+        f"residual stopped at {residual:.3g} E* (the rounding floor at those pressures), far "
+        "above a force balance on the scale P; the offset pushes the surfaces through each "
+        "other (below full contact): not an equilibrium"
     )
 
 

@@ -71,6 +71,7 @@ from ._bounded_steps import _DeviceSteps
 from ._free_mean import FreeMean
 from ._inplace import Workspace
 from ._projection import _direction_on_device, _projected_gradient_step, project_feasible
+from .bounded_rules import ON_WALL, PROJECTED_HALVINGS
 from .fourier import (
     compliance_operator,
     in_single_precision,
@@ -161,7 +162,7 @@ def minimize_energy_bounded(
     green = in_single_precision(compliance_operator(substrate, work_grid=True))
     stiff = stiffness_operator(substrate, work_grid=True)
     stiff_single = in_single_precision(stiff)
-    on_wall_tol = 1e-12 * scale
+    on_wall_tol = ON_WALL * scale
 
     def on_patch(x):
         return x if work is None else x[work.patch]
@@ -378,7 +379,7 @@ def minimize_energy_bounded(
         guess.clear()
         e_cur = energy(w, kw)  # (the energy is only needed here)
         # the step crosses the wall: project it, halve it while it does not lower E
-        for _ in range(6):
+        for _ in range(PROJECTED_HALVINGS):
             w_try = project_feasible(w + alpha * s, lower, pin)
             kw_try = stiff(w_try)
             e_try = energy(w_try, kw_try)

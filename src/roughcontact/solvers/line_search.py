@@ -6,8 +6,10 @@ import math
 
 from .._backend import constant
 from ._inplace import Workspace
+from .bounded_rules import BOUNDED_LINE_SEARCH_RTOL
 from .reductions import dot, fetch, on_device, vdot
 from .roots import bracketed_root
+from .smooth_rules import GUESS_MAX, GUESS_MIN, LINE_SEARCH_MAX_EVAL
 
 __all__ = ["device_guess", "line_minimum"]
 
@@ -19,7 +21,7 @@ def _device_guess(interaction, sa, ga, c0, c1, curv, slope0, work):
     zero, one = constant(0.0, curv), constant(1.0, curv)  # made once (see constant)
     convex = curv > zero
     hi = xp.where(convex, -slope0 / xp.where(convex, curv, one), one)
-    hi = xp.minimum(xp.maximum(hi, constant(1e-8, curv)), constant(4.0, curv))
+    hi = xp.minimum(xp.maximum(hi, constant(GUESS_MIN, curv)), constant(GUESS_MAX, curv))
     p = interaction.pressure(ga + work.scalar(hi, ga) * sa)
     return hi, p, c0 + hi * c1 - vdot(sa, p)
 
@@ -55,8 +57,8 @@ def line_minimum(
     kw,
     ks,
     slope0,
-    rtol=1e-3,
-    max_eval=60,
+    rtol=BOUNDED_LINE_SEARCH_RTOL,
+    max_eval=LINE_SEARCH_MAX_EVAL,
     with_pressure=False,
     work=None,
     elastic_slope=None,
@@ -94,7 +96,7 @@ def line_minimum(
     work = work or Workspace(gap)
     # sites that can feel the interaction for alpha <= 4; the others only matter beyond
     band = math.isfinite(interaction.cutoff)
-    sites = work.band(gap, s, 4.0, interaction.cutoff) if band else work.patch
+    sites = work.band(gap, s, GUESS_MAX, interaction.cutoff) if band else work.patch
     sa, ga = (s, gap) if sites is None else (s[sites], gap[sites])
     last = {}
     ahead = {}  # off NumPy: the next point's slope, computed with the guess (see below)
@@ -149,14 +151,14 @@ def line_minimum(
     else:
         also[:] = fetch(work.xp, also)
         hi = -slope0 / curv if curv > 0 else 1.0
-        hi = min(max(hi, 1e-8), 4.0)
+        hi = min(max(hi, GUESS_MIN), GUESS_MAX)
         f_hi = slope(hi)
     lo, f_lo = 0.0, slope0
     n_eval = 1
     if abs(f_hi) <= rtol * abs(slope0):
         return result(hi)
     while f_hi < 0 and n_eval < max_eval:
-        if hi >= 4.0 and band:  # beyond the pre-selected band: every site of the patch
+        if hi >= GUESS_MAX and band:  # beyond the pre-selected band: every site of the patch
             band, sites = False, work.patch
             sa, ga = (s, gap) if sites is None else (s[sites], gap[sites])
         lo, f_lo = hi, f_hi

@@ -6,7 +6,15 @@ import math
 
 from .result import SolveStatus
 
-__all__ = ["RELIABLE_DROP", "RELIABLE_EVERY", "ReliableUpdates", "StallGuard", "stopping"]
+__all__ = [
+    "RELIABLE_DROP",
+    "RELIABLE_EVERY",
+    "STALL_IMPROVEMENT",
+    "STALL_PATIENCE",
+    "ReliableUpdates",
+    "StallGuard",
+    "stopping",
+]
 
 
 #: Mixed-precision iterations ("reliable updates"): an exact evaluation of what the
@@ -16,6 +24,12 @@ __all__ = ["RELIABLE_DROP", "RELIABLE_EVERY", "ReliableUpdates", "StallGuard", "
 RELIABLE_DROP = 1e-3
 #: ... and at the latest after this many iterations, so that drift can never stall a solve.
 RELIABLE_EVERY = 50
+
+#: The float32 stall guard (:class:`StallGuard`, and the compiled loops' copy of it): a
+#: stall after STALL_PATIENCE iterations without a new best residual below
+#: STALL_IMPROVEMENT times the best.
+STALL_PATIENCE = 200
+STALL_IMPROVEMENT = 0.99
 
 
 class ReliableUpdates:
@@ -60,7 +74,7 @@ class StallGuard:
     short by it.
     """
 
-    def __init__(self, precision: str, patience: int = 200):
+    def __init__(self, precision: str, patience: int = STALL_PATIENCE):
         self.active = precision == "float32"
         self.patience, self.best, self.since = patience, math.inf, 0
 
@@ -68,7 +82,7 @@ class StallGuard:
         """The not-converged message if no new best residual came in ``patience`` calls."""
         if not self.active:
             return None
-        if residual < 0.99 * self.best:
+        if residual < STALL_IMPROVEMENT * self.best:
             self.best, self.since = residual, 0
             return None
         self.since += 1

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
+from array_api_compat import is_jax_array  # (looks at sys.modules: imports no jax)
 
 from .._backend import array_namespace
 from ..analysis.contact_geometry import boundary_bonds
@@ -25,10 +26,14 @@ def make_result(
     seconds,
     repulsive=None,
     attractive=None,
+    outcome=None,
 ):
     """Build the result record; ``repulsive``/``attractive`` masks default to p > 0 / none.
 
-    ``status`` (a :class:`SolveStatus`) gives ``converged``.
+    ``status`` (a :class:`SolveStatus`) gives ``converged``. ``outcome``: ``(scalars,
+    resolve)``, a loop's device scalars read in the record's one transfer and
+    ``resolve(values) -> (iterations, residual, status, message)`` of their values, which
+    replace the positional ones (a compiled loop whose outcome is read with its record).
 
     The fields stay on the heights' backend and device (no copy to the host: a path on a
     GPU warm-starts each step from the last one there); the scalars are reduced there
@@ -44,12 +49,19 @@ def make_result(
     # a free-boundary solve is a window: its edge is not a contact boundary
     # the record's scalars in one transfer (a GPU waits once)
     f64 = xp.float64
+    if is_jax_array(pressure):  # fixed shapes: a boolean gather compiles anew per count
+        p_rep, p_att = xp.where(repulsive, pressure, 0.0), xp.where(attractive, pressure, 0.0)
+    else:
+        p_rep, p_att = pressure[repulsive], pressure[attractive]
     sums = fetch(xp, [
-        xp.sum(pressure[repulsive], dtype=f64), xp.sum(pressure[attractive], dtype=f64),
+        xp.sum(p_rep, dtype=f64), xp.sum(p_att, dtype=f64),
         xp.sum(pressure, dtype=f64), xp.sum(gap, dtype=f64), xp.count_nonzero(repulsive),
         xp.count_nonzero(attractive), boundary_bonds(repulsive, periodic=substrate.periodic),
+        *(() if outcome is None else outcome[0]),
     ])  # fmt: skip
-    p_rep, p_att, p_all, gap_sum, n_rep, n_att, edges = sums
+    if outcome is not None:
+        iterations, residual, status, message = outcome[1](sums[7:])
+    p_rep, p_att, p_all, gap_sum, n_rep, n_att, edges = sums[:7]
     edges = int(edges)
     a0 = substrate.pixel_size
     return ContactResult(

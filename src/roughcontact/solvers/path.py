@@ -2,10 +2,13 @@
 
 from __future__ import annotations
 
+import contextlib
+import functools
 import math
 import time
 
 import numpy as np
+from array_api_compat import is_jax_array  # (looks at sys.modules: imports no jax)
 
 from .._backend import (
     array_device,
@@ -16,8 +19,10 @@ from .._backend import (
     to_numpy,
 )
 from .._validate import ParameterError, step_indices, step_list
-from ..analysis.contact_geometry import count_patches
+from ..analysis.contact_geometry import patch_count
 from ..pathdata import path_dataset
+from .inputs import check_problem, checked_heights, height_statistics
+from .reductions import fetch
 from .result import STATE_SCALARS, SolveStatus
 from .solve import solve
 
@@ -154,11 +159,32 @@ def approach_retract(
     host_heights = np.array(to_numpy(heights), dtype=np.float64)
     heights = to_device(heights, device, dtype or "float64")
     dtype = dtype_name(heights)
+    checked = contextlib.nullcontext
+    if is_jax_array(heights):  # checked once: the states' solves then read nothing for it
+        heights, _ = check_problem(heights, substrate, tol, None, None, dtype)
+        checked = functools.partial(checked_heights, heights, height_statistics(heights))
     attrs |= {"dtype": dtype, "device": str(array_device(heights))}
     rows, previous, t0 = [], None, time.perf_counter()
     saved = t0
+    # (row, its patch count and largest change of the deflection, the jump threshold):
+    # device scalars off NumPy, read for every state since the last in one transfer when a
+    # dataset is made, so a state's solve is its only read of the device
+    pending = []
+
+    def settle():
+        if not pending:
+            return
+        xp = array_namespace(previous.deflection)
+        values = fetch(xp, [v for _, patches, dw, _ in pending for v in (patches, dw)])
+        for (row, _, _, threshold), patches, dw in zip(
+            pending, values[::2], values[1::2], strict=True
+        ):
+            row["repulsive_patches"] = int(patches)
+            row["jump"] = threshold is not None and bool(dw > threshold)
+        pending.clear()
 
     def dataset():
+        settle()
         reached = until_area is not None and any(
             r["repulsive_area"] >= until_area for r in rows[: plan.approach_steps or None]
         )
@@ -173,25 +199,27 @@ def approach_retract(
         value = plan.values[step]
         kwargs = {control: float(value)}
         try:
-            res = solve(
-                heights, substrate, interaction, initial=previous, tol=tol,
-                max_iter=max_iter, dtype=dtype, **kwargs,
-            )  # fmt: skip
+            with checked():
+                res = solve(
+                    heights, substrate, interaction, initial=previous, tol=tol,
+                    max_iter=max_iter, dtype=dtype, **kwargs,
+                )  # fmt: skip
             if res.status is SolveStatus.NON_FINITE or not math.isfinite(res.load):
                 why = f"step {step} ({control} = {value:g}): {res.message}"
                 raise PathError(why, dataset())
             row = {k: getattr(res, k) for k in STATE_SCALARS}
             row["status"] = res.status.value
             # counted on the device: a step copies no field to the host (only fields_at);
-            # on a free boundary patches do not wrap
-            row["repulsive_patches"] = count_patches(res.pressure > 0, periodic=substrate.periodic)
-            if previous is None:
-                row["jump"] = False
-            else:
-                xp = array_namespace(res.deflection)
-                dw = float(xp.max(xp.abs(res.deflection - previous.deflection)))
-                dd = abs(res.offset - previous.offset)
-                row["jump"] = bool(dw > jump_factor * dd + jump_length)
+            # on a free boundary patches do not wrap. The count and the largest change of
+            # the deflection are read later (settle; on JAX both device scalars)
+            xp = array_namespace(res.deflection)
+            patches = patch_count(res.pressure > 0, periodic=substrate.periodic)
+            dw, threshold = 0.0, None
+            if previous is not None:
+                dw = xp.max(xp.abs(res.deflection - previous.deflection))
+                threshold = jump_factor * abs(res.offset - previous.offset) + jump_length
+            row["repulsive_patches"], row["jump"] = 0, False  # (until settled)
+            pending.append((row, patches, dw, threshold))
             rows.append(row)
             plan.keep(step, (res.pressure, res.gap, res.deflection))
             if until_area is not None and plan.approach_steps is None:

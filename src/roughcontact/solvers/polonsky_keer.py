@@ -81,7 +81,7 @@ loops take the same steps and report the same iterations (tested).
 
 A third, for heights given as a JAX array: the whole loop as one compiled program
 (:mod:`._pk_jax`, ``jax.jit`` and ``lax.while_loop``; periodic substrates, no callback,
-float64 only with ``jax_enable_x64``), which tests convergence on the device and returns
+float64 inside ``jax.enable_x64``), which tests convergence on the device and returns
 to the host only once it stops. jax is imported only when such heights arrive.
 """
 
@@ -106,7 +106,7 @@ from .._validate import ParameterError
 from ._pk_dense import iterate_dense
 from ._pk_sparse import iterate_sparse
 from .fourier import compliance_operator, in_precision, stiffness_operator
-from .inputs import check_hard_wall_offset, check_problem
+from .inputs import check_hard_wall_offset, check_problem, height_statistics
 from .observables import make_result
 from .result import SolveStatus
 
@@ -242,7 +242,12 @@ def polonsky_keer(
         check_hard_wall_offset(h, substrate, offset)
     xp = array_namespace(h)
     hf = xp.reshape(h, (-1,))
-    h_max = float(xp.max(hf))
+    std = None
+    if is_jax_array(h):  # max and rms in one transfer (none in a path: checked_heights)
+        stats = height_statistics(h)
+        h_max, std = stats["max"], stats["std"]
+    else:
+        h_max = float(xp.max(hf))
     conv = compliance_operator(substrate)
 
     def result(p, u, d, it, residual, status, message):
@@ -269,7 +274,7 @@ def polonsky_keer(
         fast_conv=conv if h.dtype == fast else in_precision(conv, fast),
         target=None if load is None else load * hf.shape[0],
         offset=offset,
-        scale=float(xp.std(hf)) or substrate.pixel_size,
+        scale=(float(xp.std(hf)) if std is None else std) or substrate.pixel_size,
         winkler=0.5 * substrate.contact_modulus / substrate.pixel_size,
         precondition=in_precision(stiffness_operator(substrate), fast) if precondition else None,
         site_stiffness=substrate.self_stiffness,

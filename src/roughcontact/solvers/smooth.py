@@ -134,21 +134,16 @@ from .observables import make_result
 from .reductions import dot as _dot
 from .reductions import fetch, largest, vdot, vtotal
 from .result import SolveStatus
+from .smooth_rules import EPS64 as _EPS64
+from .smooth_rules import (  # the rules shared with the compiled loop (:mod:`._smooth_jax`)
+    FLOOR_PATIENCE,
+    FLOOR_ULPS,
+    LINE_SEARCH_RTOL,
+    REFRESH_EVERY,
+    RESTART_EVERY,
+)
 
 __all__ = ["minimize_energy"]
-
-#: The line search stops at |phi'(alpha)| <= LINE_SEARCH_RTOL |phi'(0)|: the strong Wolfe
-#: curvature condition, whose c2 = 0.1 Nocedal & Wright (Numerical Optimization, 2nd ed.,
-#: §5.2) suggest for nonlinear CG. 1e-3 to 0.1 took the same iterations (benchmark approach,
-#: 256²-1024², within 2 %) at 2.9 -> 2.1 evaluations per line search (ℓa = 0.05) and
-#: 1.7 -> 1.1 (ℓa = 0.005) from 1e-3 to this; 0.2 changed the paths (+12 % at ℓa = 0.05).
-LINE_SEARCH_RTOL = 0.05
-
-#: float64 solves stop as stalled (see :class:`FloorGuard`) when their best residual has
-#: not halved in FLOOR_PATIENCE iterations and lies within FLOOR_ULPS floors eps max|p|/E*.
-FLOOR_PATIENCE = 100
-FLOOR_ULPS = 256
-_EPS64 = 2.220446049250313e-16  # float64 machine epsilon, 2**-52
 
 
 class FloorGuard:
@@ -224,8 +219,8 @@ def minimize_energy(
     tol=None,
     max_iter=5000,
     callback=None,
-    restart_every=200,
-    refresh_every=10,
+    restart_every=RESTART_EVERY,
+    refresh_every=REFRESH_EVERY,
     device=None,
     dtype=None,
     load=None,

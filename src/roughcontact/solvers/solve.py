@@ -38,7 +38,9 @@ def solve(
     ----------
     heights : (nx, ny) array
         Heights ``h`` of the rigid surface (length); it sits at ``z = d - h``, so maxima
-        of ``h`` are the summits touching first.
+        of ``h`` are the summits touching first. A JAX array runs the compiled loops
+        (one ``jax.jit`` program per solve; periodic substrates, no ``callback``; see
+        the README's "Compiled loops (JAX)").
     substrate : Substrate
         Elastic substrate (shape must match ``heights``).
     interaction : HardWall or an interaction law, optional
@@ -95,13 +97,14 @@ def solve(
             device=device,
             dtype=dtype,
         )
-    if is_jax_array(heights):
-        raise ParameterError(
-            "JAX heights are solved for the hard wall only (its compiled loop); pass NumPy or "
-            f"CuPy heights for {type(interaction).__name__}"
-        )
     if (load is None) == (offset is None):
         raise ParameterError("give exactly one of load (mean pressure) or offset")
+    if is_jax_array(heights):  # the compiled loops (jax is imported only here)
+        from ._adhesive_jax import solve_jax
+
+        return solve_jax(heights, substrate, interaction, load=load, offset=offset,
+                         initial=initial, tol=tol, max_iter=max_iter, callback=callback,
+                         device=device, dtype=dtype)  # fmt: skip
     minimize = minimize_energy_bounded if interaction.hard_core else minimize_energy
     kwargs = {"initial": initial, "tol": tol, "max_iter": max_iter, "callback": callback}
     kwargs |= {"device": device, "dtype": dtype}

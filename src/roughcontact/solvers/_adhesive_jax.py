@@ -1,0 +1,212 @@
+"""Adhesive solves on JAX heights: the compiled loops' entry points and their result records.
+
+:func:`minimize_energy_jax` runs :mod:`._smooth_jax` (smooth laws) for one offset: the
+inputs are checked as for the NumPy solvers (:func:`.inputs.check_problem`), the loop is
+one compiled program, and the host reads its iteration count, residual and status once
+(then :func:`.observables.make_result` reduces the record's scalars in one transfer).
+The fields of the result stay JAX arrays on the heights' device. jax is imported only
+when JAX heights arrive (this module is imported lazily by :mod:`.solve`).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+
+import jax.numpy as jnp
+import numpy as np
+
+from .._validate import ParameterError
+from ._pk_jax import check_jax_inputs
+from .adhesive_rules import (
+    RUNAWAY_RATIO,
+    floor_verdict,
+    largest_attraction,
+    physical_pressure_scale,
+    runaway_message,
+)
+from .bounded_rules import ON_WALL
+from .fourier import compliance_operator
+from .inputs import check_hard_wall_offset, check_problem, warm_deflection
+from .load_control import solve_at_load
+from .loop_control import STALL_PATIENCE
+from .observables import make_result
+from .result import SolveStatus
+from .smooth_rules import FLOOR_PATIENCE, REFRESH_EVERY, RESTART_EVERY
+
+__all__ = ["minimize_energy_bounded_jax", "minimize_energy_jax", "solve_jax"]
+
+
+def _initial_deflection(initial, substrate, h):
+    """The warm start's deflection (2D, mean-free with a rigid mean) or zeros."""
+    if initial is None:
+        return jnp.zeros_like(h)
+    w = warm_deflection(initial, substrate, h, compliance_operator(substrate, work_grid=True))
+    w = jnp.reshape(w, h.shape)
+    return w - jnp.mean(w) if substrate.rigid_mean else w
+
+
+def minimize_energy_jax(
+    heights,
+    substrate,
+    interaction,
+    *,
+    offset,
+    initial=None,
+    tol=None,
+    max_iter=5000,
+    callback=None,
+    restart_every=RESTART_EVERY,
+    refresh_every=REFRESH_EVERY,
+    device=None,
+    dtype=None,
+):
+    """:func:`.smooth.minimize_energy` for JAX ``heights`` (length), compiled.
+
+    The same parameters, results and units (offset: length; ``tol`` on
+    ``max |K w - p_int| / E*``); periodic substrates only, no ``callback``, ``device``
+    None (place the heights with ``jax.device_put``). Returns a :class:`ContactResult`
+    whose fields are JAX arrays on the heights' device.
+    """
+    from . import _smooth_jax as sj
+
+    t_start = time.perf_counter()
+    dtype = check_jax_inputs(heights, substrate, dtype, device, callback)
+    h, tol = check_problem(heights, substrate, tol, offset, None, dtype)
+    offset = float(offset)
+    base = offset - h
+    w = _initial_deflection(initial, substrate, h)
+    st, k = sj.prepare(w, substrate, interaction, base=base, tol=tol, max_iter=int(max_iter),
+                       restart_every=int(restart_every), refresh_every=int(refresh_every),
+                       warm=initial is not None)  # fmt: skip
+    st = sj.run(st, k, law=interaction, rigid=bool(substrate.rigid_mean),
+                stall=dtype == "float32", floor=dtype == "float64")  # fmt: skip
+    names = {sj.CONVERGED: "converged", sj.LIMIT: "limit", sj.STALLED: "stalled",
+             sj.FLOOR: "floor", sj.LINE_SEARCH_FAILED: "line_search"}  # fmt: skip
+
+    def resolve(values):  # the loop's outcome, read with the record (one transfer)
+        it, residual, code, best, floor_best, scale = values
+        it, code = int(it), int(code)
+        status, message = _outcome(names.get(code, "non_finite"), it, best, floor_best, scale,
+                                   substrate, tol, physical)  # fmt: skip
+        if status is not SolveStatus.RUNAWAY and float(scale) > RUNAWAY_RATIO * float(
+            largest_attraction(interaction)
+        ):  # pressures far above the law's: judged on the physical scale (as NumPy does)
+            runaway = runaway_message(float(scale), physical(), substrate.contact_modulus,
+                                      float(residual))  # fmt: skip
+            if runaway is not None:
+                status, message = SolveStatus.RUNAWAY, runaway
+        return it, residual, status, message
+
+    def physical():  # only for a stop at the floor (a transfer of the heights, then)
+        return physical_pressure_scale(np.asarray(h), substrate, interaction)
+
+    scalars = (st.it, st.residual, st.status, st.best, st.floor_best, jnp.max(jnp.abs(st.p)))
+    p, rep, att, deflection = sj.fields(st, k, interaction)
+    return make_result(h, substrate, p, deflection, offset, 0, 0.0, None, "", tol,
+                       "preconditioned-cg", time.perf_counter() - t_start, repulsive=rep,
+                       attractive=att, outcome=(scalars, resolve))  # fmt: skip
+
+
+def _outcome(kind, it, best, floor_best, scale, substrate, tol, physical=None):
+    """The :class:`SolveStatus` and message of a compiled loop's stop ``kind``, in the
+    NumPy loops' words; a stop at the float64 floor is judged as the NumPy loop judges it,
+    on the physical pressure scale ``physical()`` (:func:`.adhesive_rules.floor_verdict`:
+    "stalled" or "runaway"), never on the state's own maximum ``scale``."""
+    if kind == "converged":
+        return SolveStatus.CONVERGED, "converged"
+    if kind == "limit":
+        return SolveStatus.ITERATION_LIMIT, "iteration cap reached"
+    if kind == "stalled":
+        return SolveStatus.STALLED, (
+            f"stalled at residual {best:.2g} for {STALL_PATIENCE} iterations: the float32 "
+            "rounding floor (use dtype='float64' or a larger tol)"
+        )
+    if kind == "floor":
+        verdict, message = floor_verdict(
+            float(floor_best), float(scale), scale if physical is None else physical(),
+            substrate.contact_modulus, tol, FLOOR_PATIENCE,
+        )  # fmt: skip
+        return (SolveStatus.RUNAWAY if verdict == "runaway" else SolveStatus.STALLED), message
+    if kind == "line_search":
+        return SolveStatus.LINE_SEARCH_FAILED, f"line search failed at iteration {it}"
+    if kind == "no_descent":
+        return SolveStatus.LINE_SEARCH_FAILED, (
+            f"no descent along the projected direction at iteration {it}"
+        )
+    return SolveStatus.NON_FINITE, (
+        f"non-finite state at iteration {it} (check inputs and the interaction)"
+    )
+
+
+def minimize_energy_bounded_jax(
+    heights,
+    substrate,
+    interaction,
+    *,
+    offset,
+    initial=None,
+    tol=None,
+    max_iter=5000,
+    callback=None,
+    restart_every=RESTART_EVERY,
+    device=None,
+    dtype=None,
+):
+    """:func:`.bounded.minimize_energy_bounded` for JAX ``heights`` (length), compiled.
+
+    The same parameters, results and units (offset: length, at least mean(heights) with a
+    rigid mean; ``tol`` on the largest free-site force imbalance / E*); periodic
+    substrates only, no ``callback``, ``device`` None. Returns a :class:`ContactResult`
+    whose fields are JAX arrays on the heights' device (``pressure``: the traction).
+    """
+    from . import _bounded_jax as bj
+
+    t_start = time.perf_counter()
+    dtype = check_jax_inputs(heights, substrate, dtype, device, callback)
+    h, tol = check_problem(heights, substrate, tol, offset, None, dtype)
+    offset = float(offset)
+    (scale,) = check_hard_wall_offset(h, substrate, offset, also=["std"])
+    scale = scale or substrate.pixel_size
+    base = offset - h
+    if initial is None:
+        w = jnp.zeros_like(h)
+    else:
+        compliance = compliance_operator(substrate, work_grid=True)
+        w = jnp.reshape(warm_deflection(initial, substrate, h, compliance), h.shape)
+    st, k = bj.prepare(w, substrate, base=base, wall_tol=ON_WALL * scale, tol=tol,
+                       max_iter=int(max_iter), restart_every=int(restart_every))  # fmt: skip
+    st = bj.run(st, k, law=interaction, rigid=bool(substrate.rigid_mean), stall=dtype == "float32")
+    names = {bj.CONVERGED: "converged", bj.LIMIT: "limit", bj.STALLED: "stalled",
+             bj.LINE_SEARCH_FAILED: "line_search", bj.NO_DESCENT: "no_descent"}  # fmt: skip
+
+    def resolve(values):  # the loop's outcome, read with the record (one transfer)
+        it, residual, code, best = values
+        it, code = int(it), int(code)
+        status, message = _outcome(names.get(code, "non_finite"), it, best, 0.0, 0.0, substrate,
+                                   tol)  # fmt: skip
+        return it, residual, status, message
+
+    traction, rep, att, deflection = bj.fields(st, k, interaction)
+    return make_result(h, substrate, traction, deflection, offset, 0, 0.0, None, "", tol,
+                       "bounded-cg", time.perf_counter() - t_start, repulsive=rep,
+                       attractive=att,
+                       outcome=((st.it, st.residual, st.status, st.best), resolve))  # fmt: skip
+
+
+def solve_jax(heights, substrate, interaction, *, load, offset, **kwargs):
+    """:func:`.solve.solve` for an adhesive law on JAX heights: the compiled loop of the
+    law's kind (smooth or hard-core) at an offset, or under load control the offset search
+    of :func:`.load_control.solve_at_load` around compiled solves (each warm-started on
+    the device from the nearest state)."""
+    minimize = minimize_energy_bounded_jax if interaction.hard_core else minimize_energy_jax
+    if offset is not None:
+        return minimize(heights, substrate, interaction, offset=offset, **kwargs)
+    if not math.isfinite(float(load)):
+        raise ParameterError(f"load must be finite, got {load!r}")
+    # the checks of the compiled loops first (one line each), then load control's; the
+    # precision as at an offset (default: the heights' own)
+    kwargs["dtype"] = check_jax_inputs(
+        heights, substrate, kwargs["dtype"], kwargs["device"], kwargs["callback"]
+    )
+    return solve_at_load(minimize, heights, substrate, interaction, load=load, **kwargs)

@@ -1,0 +1,37 @@
+"""Rules of the bounded (hard-core) minimiser shared by its NumPy loop and its compiled one.
+
+The NumPy/array-API loop (:mod:`.bounded`, with :mod:`._projection`) and the compiled
+JAX loop (:mod:`._bounded_jax`) take the same steps: these constants are stated once here
+and imported by both (as :mod:`.pk_rules` is for the hard wall and :mod:`.smooth_rules`
+for the smooth minimiser, whose line search both share).
+"""
+
+from __future__ import annotations
+
+__all__ = [
+    "BOUNDED_LINE_SEARCH_RTOL",
+    "GRADIENT_HALVINGS",
+    "ON_WALL",
+    "PROJECTED_HALVINGS",
+    "PROJECTION_MAX_STEPS",
+    "PROJECTION_RTOL",
+]
+
+#: The bounded solver's line search stops at |phi'(alpha)| <= this |phi'(0)| (the default
+#: of :func:`.line_search.line_minimum`).
+BOUNDED_LINE_SEARCH_RTOL = 1e-3
+
+#: A site is on the wall when its gap is at most ON_WALL times the heights' rms (their
+#: pixel size for a flat surface): the rounding of ``base + w`` at a clipped site.
+ON_WALL = 1e-12
+
+#: A step that crosses the wall is projected and halved at most PROJECTED_HALVINGS times
+#: until the energy does not rise; then a projected steepest-descent step is halved at
+#: most GRADIENT_HALVINGS times until it lowers the energy (else: no descent).
+PROJECTED_HALVINGS = 6
+GRADIENT_HALVINGS = 40
+
+#: The projection's Newton iteration for the multiplier of the mean: at most
+#: PROJECTION_MAX_STEPS steps, done when |sum| <= PROJECTION_RTOL (sum|lower| + sum|v|).
+PROJECTION_MAX_STEPS = 200
+PROJECTION_RTOL = 1e-13
