@@ -18,6 +18,7 @@ import click
 from .._validate import DPI, click_check
 from ..topography.prepare import DETREND_MODES
 from ..topography.simulate import ADHESION_RANGE_GIVEN, SEEDS, SIZE
+from ._outputs import force_option
 
 __all__ = ["stick"]
 
@@ -120,6 +121,7 @@ def _pixel_size(text):
     default=None,
     help="Report directory: result.json, summary.txt and figures (created).",
 )
+@force_option
 @click.option(
     "--format",
     "formats",
@@ -187,10 +189,10 @@ def stick(scan, channel, modulus, work, poisson, counter_modulus, counter_poisso
     from ..topography.verdict import stick as run
 
     if out_dir is not None:
-        from .._io import check_directory_writable
+        from ._outputs import claim_output_directory
 
         DPI.check("--dpi", dpi)
-        check_directory_writable(out_dir, "-o/--output")  # before the analysis
+        claim_output_directory(out_dir, scan)  # before the analysis
     result = run(
         scan,
         modulus=modulus,
