@@ -44,6 +44,17 @@ def install(argv0=None) -> bool:
         argv0 = sys.argv[0] if sys.argv else ""
     if os.path.basename(str(argv0)).removesuffix(".exe") != PROGRAM:
         return False
+    mp = sys.modules.get("multiprocessing")
+    if mp is not None and mp.current_process().name != "MainProcess":
+        # a worker process of the local Dask cluster, spawned from the console script
+        # (it imports it again as __mp_main__): Ctrl-C in the terminal reaches it too,
+        # but the command's own process stops the work and closes the cluster; a line or
+        # a traceback from here would only repeat it
+        try:
+            signal.signal(signal.SIGINT, signal.SIG_IGN)
+        except ValueError:  # pragma: no cover - not the main thread
+            pass
+        return False
     try:
         if signal.getsignal(signal.SIGINT) is not signal.default_int_handler:
             return False
