@@ -73,7 +73,7 @@ def missing_policy(name, data, fill_missing, periodic, info):
         raise ParameterError(f"{name}: every point is missing; no heights to read")
     if fill_missing is None and fraction > MISSING_FILL_MAX:
         raise ParameterError(
-            f"{name}: {fraction:.1%} of the points ({count} of {missing.size}) are missing "
+            f"{name}: {_percent(fraction)} of the points ({count} of {missing.size}) are missing "
             "(NaN or masked by the instrument), more than the "
             f"{MISSING_FILL_MAX:.0%} filled by default; {_option_text()} fills them by "
             "harmonic interpolation, which removes the roughness of the filled area"
@@ -109,7 +109,18 @@ def fill_note(missing: dict, total: int | None = None) -> str:
     line = f"filled {count}{of} missing points ({f:.3%} of the scan) by {how}"
     if f > MISSING_FILL_MAX:
         line += (
-            f"; {f:.1%} is more than the {MISSING_FILL_MAX:.0%} filled by default: slope and "
+            f"; {_percent(f)} is more than the {MISSING_FILL_MAX:.0%} filled by default: slope and "
             f"curvature may be low by about {f:.0%} (the filled area has no roughness)"
         )
     return line
+
+
+def _percent(fraction: float, limit: float = MISSING_FILL_MAX) -> str:
+    """``fraction`` in percent with the digits that tell it from ``limit`` and keep it
+    within 0.5 % of its value (1.05 %, not the 1.0 % that reads as the limit itself)."""
+    for digits in range(1, 7):
+        text = f"{fraction:.{digits}%}"
+        close = abs(float(text[:-1]) - 100 * fraction) <= 0.005 * 100 * fraction
+        if close and (fraction == limit or text != f"{limit:.{digits}%}"):
+            return text
+    return f"{fraction:.7%}"
