@@ -140,6 +140,10 @@ def test_collect_never_replaces_a_file_of_the_study(tmp_path):
     ):
         r = CliRunner().invoke(main, ["study", "collect", str(out), "-o", str(target)])
         _one_line(r, "-o/--output", *words)
+    # any command: a file of a study directory is never an output
+    np.save(tmp_path / "s.npy", _surface())
+    r = CliRunner().invoke(main, _path_args(tmp_path / "s.npy", out / "task-00000.nc"))
+    _one_line(r, "file of the study")
     assert (out / "task-00000.nc").read_bytes() == b"finished task"
     assert not (out / "task-00007.nc").exists()
 

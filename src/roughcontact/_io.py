@@ -260,7 +260,8 @@ def check_writable(path, what: str = "output", *, inputs=(), protected=()) -> Pa
     :mod:`roughcontact._guard`): a regular file, not a link, device or FIFO, not
     write-protected and none of ``inputs`` (the command's input files, compared by
     ``st_dev``/``st_ino``, so another path or a hard link to one is refused too) or
-    ``protected`` (files the command must not touch, e.g. a study's own). ``path`` is
+    ``protected`` (files the command must not touch), nor a file of a study (its task
+    files, ``study.json``, ``study.toml``, lock) when ``path``'s directory holds one. ``path`` is
     registered as a name the user gave and ``inputs`` as inputs: the writer refuses
     them again when it writes. Returns ``path`` as a :class:`~pathlib.Path`.
 
@@ -281,6 +282,10 @@ def check_writable(path, what: str = "output", *, inputs=(), protected=()) -> Pa
     _guard.protect(*inputs, *protected)
     _guard.name_output(final)
     _guard.check_target(final, what)
+    if (parent / "study.json").is_file():  # a study directory: its task files, lock, ...
+        from .studies.store import check_not_study_file
+
+        check_not_study_file(parent, final, what)
     _probe(final.with_name(f".{final.name}.{uuid.uuid4().hex[:12]}.probe"), what, final)
     return final
 

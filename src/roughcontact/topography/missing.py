@@ -117,10 +117,10 @@ def fill_note(missing: dict, total: int | None = None) -> str:
 
 def _percent(fraction: float, limit: float = MISSING_FILL_MAX) -> str:
     """``fraction`` in percent with the digits that tell it from ``limit`` and keep it
-    within 0.5 % of its value (1.05 %, not the 1.0 % that reads as the limit itself)."""
+    within 1 % of its value (1.05 %, not the 1.0 % that reads as the limit itself)."""
     for digits in range(1, 7):
         text = f"{fraction:.{digits}%}"
-        close = abs(float(text[:-1]) - 100 * fraction) <= 0.005 * 100 * fraction
+        close = abs(float(text[:-1]) - 100 * fraction) <= 0.01 * 100 * fraction
         if close and (fraction == limit or text != f"{limit:.{digits}%}"):
             return text
     return f"{fraction:.7%}"
