@@ -17,7 +17,7 @@ import time
 
 import numpy as np
 import pytest
-from _helpers import POSIX
+from _helpers import DATA, POSIX
 from _helpers import cli_one_line_error as _one_line
 from _helpers import random_surface as _surface
 from click.testing import CliRunner
@@ -112,6 +112,18 @@ def test_checkpoint_seconds_must_be_finite(value, tmp_path):
             str(tmp_path / "p.nc"), "--checkpoint-seconds", value]  # fmt: skip
     _one_line(CliRunner().invoke(main, args), "--checkpoint-seconds")
     assert not (tmp_path / "p.nc").exists()
+
+
+def test_stick_dpi_is_checked_without_a_report_directory(monkeypatch):
+    import roughcontact.topography.verdict as verdict
+
+    def no_work(*a, **k):
+        raise AssertionError("analysed before --dpi was checked")
+
+    monkeypatch.setattr(verdict, "stick", no_work)
+    args = ["stick", str(DATA / "di-1.di"), "--modulus", "1GPa", "--work-of-adhesion",
+            "50mJ/m^2", "--dpi", "0"]  # fmt: skip
+    _one_line(CliRunner().invoke(main, args), "dpi")
 
 
 def test_load_help_names_the_units_of_modulus():

@@ -188,10 +188,10 @@ def stick(scan, channel, modulus, work, poisson, counter_modulus, counter_poisso
     from ..topography.report import summary, write_report
     from ..topography.verdict import stick as run
 
+    DPI.check("--dpi", dpi)  # checked when given, with or without -o
     if out_dir is not None:
         from ._outputs import claim_output_directory
 
-        DPI.check("--dpi", dpi)
         claim_output_directory(out_dir, scan)  # before the analysis
     result = run(
         scan,
