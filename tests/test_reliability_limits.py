@@ -222,3 +222,21 @@ def test_stale_scratch_directories_of_ours_are_removed_live_or_young_ones_kept(t
         _scratch.remove_scratch(str(live), held)
     assert removed == [str(stale)] and not stale.exists()
     assert young.is_dir() and other.is_dir() and target.is_dir() and link.is_symlink()
+
+
+def test_a_damaged_task_file_is_counted_missing_not_a_traceback(tmp_path, make_study):
+    from roughcontact.studies import collect_study, run_study
+
+    out = tmp_path / "study"
+    run_study(make_study(num=2), out, scheduler="synchronous", progress=False)
+    task = out / "task-00001.nc"
+    data = bytearray(task.read_bytes())
+    for i in random.Random(2).sample(range(2000, len(data)), 200):
+        data[i] ^= 0xFF
+    task.write_bytes(bytes(data))
+    ds = collect_study(out)
+    assert ds.attrs["tasks_missing"] == 1 and ds.attrs["tasks_done"] == 7
+    assert "damaged" in str(ds["failure_reason"].sel(task="00001").values)
+    r = CliRunner().invoke(main, ["figures", str(out), "-o", str(tmp_path / "fig"),
+                                  "--format", "png"])  # fmt: skip
+    assert r.exit_code == 0, r.output

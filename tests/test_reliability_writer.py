@@ -9,6 +9,7 @@ ahead. Devices are only ever reached through links made in a temporary directory
 rule regressed, the link would be replaced, never the device.
 """
 
+import json
 import os
 import stat
 from pathlib import Path
@@ -129,10 +130,13 @@ def test_the_writer_itself_refuses_devices_fifos_and_protected_files(tmp_path):
 def test_collect_never_replaces_a_file_of_the_study(tmp_path):
     out = tmp_path / "study"
     out.mkdir()
-    (out / "study.json").write_text("{}")
+    source = tmp_path / "my-study.toml"
+    source.write_text("[study]\n")
+    (out / "study.json").write_text(json.dumps({"source": str(source)}))
     (out / "task-00000.nc").write_bytes(b"finished task")
     os.link(out / "task-00000.nc", tmp_path / "elsewhere.nc")
     for target, words in (
+        (source, ["input"]),  # the study file it was run from
         (out / "task-00000.nc", ["file of the study"]),
         (out / "task-00007.nc", ["file of the study"]),
         (out / "study.json", ["file of the study"]),
@@ -145,7 +149,7 @@ def test_collect_never_replaces_a_file_of_the_study(tmp_path):
     r = CliRunner().invoke(main, _path_args(tmp_path / "s.npy", out / "task-00000.nc"))
     _one_line(r, "file of the study")
     assert (out / "task-00000.nc").read_bytes() == b"finished task"
-    assert not (out / "task-00007.nc").exists()
+    assert not (out / "task-00007.nc").exists() and source.read_text() == "[study]\n"
 
 
 # --- report directories: foreign files refused, our own rewritten ----------------------
