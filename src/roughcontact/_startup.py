@@ -8,9 +8,11 @@ without unwinding keeps an import half-done from turning the interruption into a
 ``ImportError`` (NumPy reports any failure of its C modules as a broken install).
 Once a command runs, :func:`roughcontact._signals.interruptible` takes over (Ctrl-C
 then saves the finished work). A library import (a notebook, another program) changes
-nothing. Only the standard library's ``os``, ``signal`` and ``sys`` are used here.
+nothing. Only the standard library's ``atexit``, ``os``, ``signal`` and ``sys`` are used
+here. A Ctrl-C while the finished command's process exits is ignored.
 """
 
+import atexit
 import os
 import signal
 import sys
@@ -61,7 +63,18 @@ def install(argv0=None) -> bool:
         signal.signal(signal.SIGINT, exit_interrupted)
     except ValueError:  # not the main thread
         return False
+    atexit.register(_ignore_at_exit)
     return True
+
+
+def _ignore_at_exit() -> None:  # pragma: no cover - runs as a subprocess exits
+    """Ctrl-C once the command has finished (and said so) is ignored: Python's
+    finalisation would otherwise restore the default action, and a Ctrl-C in its last
+    moments would kill the process without a word (exit status -2)."""
+    try:
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
+    except (ValueError, OSError):
+        pass
 
 
 install()

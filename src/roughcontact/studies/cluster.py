@@ -122,8 +122,12 @@ def _local_cluster(n: int, dashboard: bool):
     remove_stale_scratch()  # what a killed run left behind (ours, old, unlocked)
     # private scratch space: fresh, mode 0700, locked while in use, removed by close()
     scratch = tempfile.mkdtemp(prefix=SCRATCH_PREFIX)
-    os.chmod(scratch, 0o700)
-    held = lock_scratch(scratch)
+    try:  # Ctrl-C right now: the fresh directory goes too
+        os.chmod(scratch, 0o700)
+        held = lock_scratch(scratch)
+    except BaseException:
+        remove_scratch(scratch, None)
+        raise
     scheduler = {
         "cls": Scheduler if dashboard else this._QuietScheduler,
         "options": {

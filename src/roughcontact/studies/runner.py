@@ -251,12 +251,19 @@ def _stopped(err, spec, out) -> KeyboardInterrupt:
     return Terminated(message) if terminated else KeyboardInterrupt(message)
 
 
-def _close(client, local, stopped: bool) -> None:
+def _close(client, local, stopped: bool, spec, out) -> None:
     """Close the local cluster; once stopped, at once and without a second interruption
-    (Ctrl-C pressed again while it closes) cutting the clean-up short."""
+    (Ctrl-C pressed again while it closes) cutting the clean-up short. Ctrl-C or SIGTERM
+    during an ordinary close: the close is finished at once and the interruption raised
+    saying what is on disk."""
     if not stopped:
-        cluster.close(client, local)
-        return
+        try:
+            cluster.close(client, local)
+            return
+        except KeyboardInterrupt as err:
+            interrupted = err
+        _close(client, local, True, spec, out)
+        raise _stopped(interrupted, spec, out) from None
     try:
         with deferred():
             cluster.close(client, local, fast=True)
@@ -309,7 +316,7 @@ def _run_locked(spec, out, resume, where, progress, t0):
         raise _stopped(err, spec, out) from None
     finally:
         if local is not None:  # and its private scratch directory; at once when stopped
-            _close(client, local, stopped)
+            _close(client, local, stopped, spec, out)
         elif client is not None and client is not scheduler:
             client.close()
     return StudySummary(

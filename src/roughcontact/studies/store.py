@@ -264,9 +264,10 @@ def check_not_study_file(out_dir, path, what: str = "output") -> None:
     """Refuse ``path`` as an output if it is a study file of ``out_dir`` (one line).
 
     A study's own files (:data:`MANIFEST`, ``study.toml``, task files, failure records,
-    the lock, and the study file it was run from) are never replaced by another command's output: by name in the study
-    directory, and by ``st_dev``/``st_ino`` wherever another path or a hard link names
-    one (they are registered as protected for the writer, :mod:`roughcontact._guard`).
+    the lock, and the study file it was run from) are never replaced by another command's
+    output: by name in the study directory, and by ``st_dev``/``st_ino`` wherever another
+    path or a hard link names one (they are registered as protected for the writer,
+    :mod:`roughcontact._guard`).
     """
     import fnmatch
 
