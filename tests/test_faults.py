@@ -135,8 +135,8 @@ def test_a_real_write_refusal_end_to_end(tmp_path, sphere_file):
     out = tmp_path / "p.nc"
     cmd = [*CLI, "path", str(sphere_file), "--loads", "1e-3", "4e-2", "1e-3", "-o", str(out)]
 
-    def limit():  # each checkpoint is 31.5 kB + 138 B a step: about 15 of them fit
-        resource.setrlimit(resource.RLIMIT_FSIZE, (33_500, 33_500))
+    def limit():  # each checkpoint is 32.8 kB + 154 B a step: about 14 of them fit
+        resource.setrlimit(resource.RLIMIT_FSIZE, (35_000, 35_000))
         signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
 
     env = dict(os.environ, PYTHONDONTWRITEBYTECODE="1")

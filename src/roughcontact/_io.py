@@ -18,9 +18,11 @@ from __future__ import annotations
 import contextlib
 import errno
 import os
+import stat
 import uuid
 from pathlib import Path
 
+from . import _guard
 from ._signals import deferred
 from .errors import ParameterError
 
@@ -29,6 +31,7 @@ __all__ = [
     "WriteError",
     "as_write_error",
     "check_directory_writable",
+    "claim_directory",
     "check_writable",
     "netcdf_bytes",
     "output_directory",
@@ -104,14 +107,26 @@ def _fsync_dir(directory: Path) -> None:
 def write_bytes_atomic(path, data, *, opener=None) -> Path:
     """Write ``data`` (bytes-like) to ``path`` atomically and durably; return the path.
 
-    The temporary file is new (``O_EXCL``, never through a symbolic link); a link at
-    ``path`` is replaced, not followed. ``opener(path, flags, mode) -> fd`` replaces
-    ``os.open`` for it (e.g. :func:`roughcontact.studies.lock.open_regular`). Raises
-    :class:`WriteError` when the storage cannot take the bytes (see the module
-    docstring) and any other :class:`OSError` as it is (permission denied, missing
-    directory, ...), in both cases with ``path`` unchanged and no temporary file left.
+    The temporary file is new (``O_EXCL``, never through a symbolic link). Only a
+    regular file at ``path`` is replaced (keeping its permission bits), never a device,
+    FIFO, an input of the command or a write-protected file, nor a link at a name the
+    user gave (a link planted under another name is replaced, not followed): the rules
+    of :mod:`roughcontact._guard`, a one-line :class:`ParameterError` otherwise. A file
+    written below a claimed report directory is recorded in its manifest first.
+    ``opener(path, flags, mode) -> fd`` replaces ``os.open`` for the temporary file
+    (e.g. :func:`roughcontact.studies.lock.open_regular`). Raises :class:`WriteError`
+    when the storage cannot take the bytes (see the module docstring) and any other
+    :class:`OSError` as it is (permission denied, missing directory, ...), in both cases
+    with ``path`` unchanged and no temporary file left.
     """
     final = Path(path)
+    _guard.check_target(final, "output", named=None)
+    try:
+        old = os.lstat(final)
+        mode = stat.S_IMODE(old.st_mode) if stat.S_ISREG(old.st_mode) else None
+    except OSError:
+        mode = None
+    _guard.record(final)
     tmp = temporary_name(final)
     flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL
     flags |= getattr(os, "O_BINARY", 0) | getattr(os, "O_NOFOLLOW", 0) | getattr(os, "O_CLOEXEC", 0)
@@ -119,6 +134,8 @@ def write_bytes_atomic(path, data, *, opener=None) -> Path:
         try:
             fd = (opener or os.open)(tmp, flags, 0o666)
             try:
+                if mode is not None:  # the replaced file's permissions, not the umask's
+                    os.fchmod(fd, mode)
                 _write_all(fd, data)
                 os.fsync(fd)
                 written = os.fstat(fd)
@@ -213,8 +230,9 @@ def read_netcdf(path, *, refusal: str):
         return xr.load_dataset(regular_input(path, "file"), engine="h5netcdf")
     except ParameterError as err:
         raise ParameterError(f"{refusal}: {err}") from None
-    except (OSError, ValueError) as err:
-        raise ParameterError(f"{refusal}: {err}") from None
+    except Exception as err:  # noqa: BLE001 - h5py's checksum RuntimeError, KeyError, ...
+        why = " ".join(f"{type(err).__name__}: {err}".split())[:300]
+        raise ParameterError(f"{refusal} ({why})") from None
 
 
 def _probe(probe: Path, what: str, named: Path) -> None:
@@ -232,13 +250,20 @@ def _probe(probe: Path, what: str, named: Path) -> None:
     _remove(probe)
 
 
-def check_writable(path, what: str = "output") -> Path:
+def check_writable(path, what: str = "output", *, inputs=(), protected=()) -> Path:
     """Refuse, before any work, an output file that could not be written at the end.
 
     ``path``'s directory must exist and take a new file there: a temporary file is
     created (``O_EXCL``, never through a link) and removed at once, which also catches a
     read-only mount that permission bits alone would not show. ``path`` itself must not
-    be a directory. Returns ``path`` as a :class:`~pathlib.Path`.
+    be a directory, and an existing ``path`` must be a file the writer replaces (see
+    :mod:`roughcontact._guard`): a regular file, not a link, device or FIFO, not
+    write-protected and none of ``inputs`` (the command's input files, compared by
+    ``st_dev``/``st_ino``, so another path or a hard link to one is refused too) or
+    ``protected`` (files the command must not touch), nor a file of a study (its task
+    files, ``study.json``, ``study.toml``, lock) when ``path``'s directory holds one. ``path`` is
+    registered as a name the user gave and ``inputs`` as inputs: the writer refuses
+    them again when it writes. Returns ``path`` as a :class:`~pathlib.Path`.
 
     Raises
     ------
@@ -254,6 +279,13 @@ def check_writable(path, what: str = "output") -> Path:
         raise ParameterError(f"{what} {str(final)!r}: its directory {str(parent)!r} {why}")
     if final.is_dir() and not final.is_symlink():
         raise ParameterError(f"{what} {str(final)!r} is a directory; expected a file name")
+    _guard.protect(*inputs, *protected)
+    _guard.name_output(final)
+    _guard.check_target(final, what)
+    if (parent / "study.json").is_file():  # a study directory: its task files, lock, ...
+        from .studies.store import check_not_study_file
+
+        check_not_study_file(parent, final, what)
     _probe(final.with_name(f".{final.name}.{uuid.uuid4().hex[:12]}.probe"), what, final)
     return final
 
@@ -284,6 +316,12 @@ def check_directory_writable(path, what: str = "output directory") -> Path:
         )
     _probe(base / f".roughcontact-probe-{uuid.uuid4().hex[:12]}", what, directory)
     return directory
+
+
+def claim_directory(path, what: str = "-o/--output", *, force: bool = False) -> Path:
+    """Claim a report directory before any work (:func:`roughcontact._guard.claim_directory`):
+    refused if it holds files roughcontact did not write there, unless ``force``."""
+    return _guard.claim_directory(path, what, force=force)
 
 
 def output_directory(path, what: str = "output directory") -> Path:

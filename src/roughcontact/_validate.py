@@ -9,12 +9,12 @@ takes its ``accepted`` text and test from the same constant).
 from __future__ import annotations
 
 import math
-import os
 from dataclasses import dataclass
 
 import numpy as np
 
 from ._backend import array_namespace, is_numpy_array, to_numpy
+from ._memory import available_memory as available_memory
 from .errors import ParameterError
 
 
@@ -206,27 +206,6 @@ def step_indices(name: str, steps, size: int) -> list[int]:
             )
         out.append(i % size)
     return out
-
-
-def available_memory() -> int | None:
-    """Bytes of memory available to a new allocation here (None if unknown)."""
-    try:
-        with open("/proc/meminfo") as f:
-            for line in f:
-                if line.startswith("MemAvailable:"):
-                    return int(line.split()[1]) * 1024
-    except (OSError, ValueError, IndexError):
-        pass
-    try:
-        return int(os.sysconf("SC_AVPHYS_PAGES")) * int(os.sysconf("SC_PAGE_SIZE"))
-    except (AttributeError, OSError, ValueError):
-        pass
-    try:  # pragma: no cover - platforms without sysconf
-        import psutil
-
-        return int(psutil.virtual_memory().available)
-    except Exception:  # noqa: BLE001
-        return None
 
 
 def _gib(nbytes: float) -> str:

@@ -148,6 +148,7 @@ ATTRIBUTES = (
     Attribute("units", "", "the units, in words"),
     Attribute("offset_unit", "", "unit of the offsets given to 'roughcontact path'"),
     Attribute("surface_file", "", "the heights file given to 'roughcontact path'"),
+    Attribute("length_unit", "", "lengths in 'm' (an instrument file) or 'a0' (the pixel size)"),
 )
 _UNITS = "lattice units unless given: loads and areas per nominal area A0"
 
@@ -303,12 +304,7 @@ def check_path(ds) -> None:
                 f"{a.accepted.accepted} {_NOT_OURS}"
             )
     if "grid" in ds.attrs:
-        grid = np.atleast_1d(ds.attrs["grid"])
-        if grid.size != 2 or not all(GRID_SIZE.contains(g) for g in grid):
-            raise ParameterError(
-                f"path dataset attribute grid = {ds.attrs['grid']!r} is out of range: "
-                f"accepted two grid sizes, each {GRID_SIZE.accepted}"
-            )
+        _check_grid(ds)
     for name in REQUIRED:
         if _BY_NAME[name].kind == "U":
             continue
@@ -321,6 +317,39 @@ def check_path(ds) -> None:
 
 def _is_inf(value) -> bool:
     return isinstance(value, (float, np.floating)) and value == math.inf
+
+
+#: bytes per grid site that analysing a path may need (its substrate's kernel and a
+#: hard-wall reference solve on the grid of the attribute ``grid``)
+ANALYSIS_BYTES_PER_SITE = 160
+
+
+def _check_grid(ds) -> None:
+    """``grid``: two grid sizes, those of the heights and maps the file holds, and a grid
+    whose analysis fits in memory, checked before anything of that size is allocated."""
+    from ._validate import fits_in_memory
+
+    raw = ds.attrs["grid"]
+    grid = np.atleast_1d(raw)
+    if grid.size != 2 or not all(GRID_SIZE.contains(g) for g in grid):
+        raise ParameterError(
+            f"path dataset attribute grid = {raw!r} is out of range: "
+            f"accepted two grid sizes, each {GRID_SIZE.accepted}"
+        )
+    shape = (int(grid[0]), int(grid[1]))
+    held = tuple(ds.sizes[d] for d in _SURFACE if d in ds.sizes)
+    if len(held) == 2 and held != shape:
+        raise ParameterError(
+            f"path dataset attribute grid = {list(shape)} disagrees with the {held[0]} x "
+            f"{held[1]} grid of the heights and maps the file holds {_NOT_OURS}"
+        )
+    fits_in_memory(
+        "path dataset attribute grid",
+        list(shape),
+        ANALYSIS_BYTES_PER_SITE * shape[0] * shape[1],
+        f"analysing a path on a {shape[0]} x {shape[1]} grid",
+        ANALYSIS_BYTES_PER_SITE,
+    )
 
 
 def write_path(ds, path, *, encoding=None, attrs=None, opener=None):

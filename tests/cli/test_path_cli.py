@@ -237,7 +237,7 @@ def test_contact_text_output_states_the_units(surface):
         0.5,
     )
     assert r.exit_code == 0, r.output
-    assert "(N/A0, pressure, units of E* = 2)" in r.output
+    assert "(N/A0, pressure, in the units of --modulus (E* = 2))" in r.output
     assert "(length, units of a0 = 0.5)" in r.output
 
 

@@ -23,6 +23,8 @@ DATA = Path(__file__).resolve().parents[1] / "data" / "topographies"
 MATERIAL = ["--modulus", "10MPa", "--work-of-adhesion", "50mJ/m^2"]
 REPORT = {"result.json", "summary.txt", "scan.png", "psd.png", "slope.png", "margin.png",
           "report.html"}  # fmt: skip
+#: the record of what roughcontact wrote there (a rerun into DIR goes ahead)
+MANIFEST = ".roughcontact-manifest.json"
 
 
 @pytest.fixture(scope="module")
@@ -88,7 +90,7 @@ def test_report_directory(scan, tmp_path):
     r = _run([scan, *NPY, *MATERIAL, "-o", out])
     assert r.exit_code == 0, r.output
     assert r.output.splitlines()[-1] == f"report: {out}"
-    assert {p.name for p in out.iterdir()} == REPORT
+    assert {p.name for p in out.iterdir()} == REPORT | {MANIFEST}
     assert {p.name for p in tmp_path.iterdir()} == {"report"}  # nothing outside DIR
     d = json.loads((out / "result.json").read_text())
     assert d["sticky"] in (True, False, None) and "units" in d
@@ -196,7 +198,7 @@ def test_simulate_json_text_and_report(fine_scan, tmp_path):
     assert any(line.startswith("simulated: sticky over 1 of 1 seeds") for line in lines)
     assert any("range 0.5 nm (Maugis-Dugdale" in line for line in lines)
     assert any(line.startswith("per seed kappa") and " Pa" in line for line in lines)
-    assert {p.name for p in out.iterdir()} == REPORT | {"contact_map.png"}
+    assert {p.name for p in out.iterdir()} == REPORT | {"contact_map.png", MANIFEST}
     assert (out / "contact_map.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert json.loads((out / "result.json").read_text())["simulation"]["verdict"] == "sticky"
 

@@ -75,7 +75,9 @@ def test_cli_crash_leaves_the_last_checkpoint(surface_file, tmp_path, monkeypatc
     out = tmp_path / "p.nc"
     args = ["path", str(surface_file), "--loads", "1e-3", "5e-3", "1e-3", "-o", str(out)]
     r = CliRunner().invoke(main, [*args, "--checkpoint-seconds", "0"])
-    assert isinstance(r.exception, MemoryError)
+    # out of memory is one line and exit code 1, not a traceback
+    assert r.exit_code == 1 and "out of memory" in r.output, r.output
+    assert len(r.output.strip().splitlines()) == 1, r.output
     with xr.open_dataset(out, engine="h5netcdf") as ds:
         assert ds.sizes["step"] == 4  # every step before the crash
     assert [p.name for p in tmp_path.iterdir() if p.name.endswith(".tmp")] == []

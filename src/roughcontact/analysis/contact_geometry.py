@@ -190,6 +190,8 @@ def contact_patches(mask, *, periodic: bool = True):
     from scipy import ndimage
 
     m = np.asarray(to_numpy(mask), dtype=bool)
+    if m.ndim != 2:
+        raise ParameterError(f"mask must be a 2D array of booleans, got shape {m.shape}")
     labels, n = ndimage.label(m)
     if n == 0:
         return labels, np.zeros(0, dtype=int)

@@ -302,6 +302,11 @@ def analyze_path(
         (the message says how far it got and which offset would reach it).
     """
     if not hasattr(ds, "variables"):
+        if not isinstance(ds, (str, bytes)) and not hasattr(ds, "__fspath__"):
+            raise ParameterError(
+                "ds must be a path dataset (xarray.Dataset from approach_retract or "
+                f"read_path) or the name of its NetCDF file, got {type(ds).__name__}"
+            )
         ds = load_path(ds)
     _check(ds)
     target = TARGET_AREA.check("target_area", target_area)

@@ -279,7 +279,11 @@ def _units(modulus, pixel_size, surface=None) -> dict:
     length = "length, a0 units" if pixel_size == 1 else f"length, units of a0 = {pixel_size:g}"
     if surface is not None:
         length = "length, m"
-    pressure = "N/A0, units of E*" if modulus == 1 else f"N/A0, pressure, units of E* = {modulus:g}"
+    pressure = (
+        "N/A0, units of E*"
+        if modulus == 1
+        else f"N/A0, pressure, in the units of --modulus (E* = {modulus:g})"
+    )
     area = "fraction of A0"
     inverse_length = "per A0, 1/length" + ("" if pixel_size == 1 else f" (a0 = {pixel_size:g})")
     if surface is not None:

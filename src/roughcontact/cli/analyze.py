@@ -57,13 +57,15 @@ from .._validate import FIT_MAX_AREA, TARGET_AREA, click_check, json_safe
 @click.option(
     "--length-scale",
     default=None,
+    callback=lambda ctx, param, value: _scale(value, "length", "--length-scale"),
     help="Metres per the path's length unit, e.g. '0.3 nm' (a lattice path of a0 = 0.3 nm); "
-    "default 1 m for a path computed from an instrument file, else none. With "
-    "--pressure-scale: the dissipated energy in J/m^2 and J.",
+    "default 1 m for a path whose length_unit attribute is m (computed from an instrument "
+    "file), else none. With --pressure-scale: the dissipated energy in J/m^2 and J.",
 )
 @click.option(
     "--pressure-scale",
     default=None,
+    callback=lambda ctx, param, value: _scale(value, "pressure", "--pressure-scale"),
     help="Pascals per the path's pressure unit, e.g. '10 MPa' (a lattice path, E* = 1, of "
     "E* = 10 MPa) or '1 Pa' (--modulus was given in Pa).",
 )
@@ -101,6 +103,11 @@ def analyze(
     """
     from ..analysis.path_analysis import UnconvergedPathError, analyze_path, load_path
 
+    if hysteresis_figure is not None:  # before any work: a device, the input, a bad suffix
+        _figure_format(hysteresis_figure)
+        from .._io import check_writable
+
+        check_writable(hysteresis_figure, "--hysteresis-figure", inputs=(path_file,))
     ds = load_path(path_file)
     try:
         result = analyze_path(
@@ -119,7 +126,7 @@ def analyze(
     if hysteresis_figure is not None:
         from ..plot.hysteresis import hysteresis_figure as _figure
 
-        _figure(ds).savefig(hysteresis_figure, dpi=150)
+        _save_figure(_figure(ds), hysteresis_figure)
     for message in summary["warnings"]:
         click.echo(f"roughcontact: warning: {message}", err=True)
     if as_json:
@@ -152,15 +159,26 @@ def _si_energies(ds, length_scale, pressure_scale) -> dict:
     keys = ("dissipated_energy_si", "dissipated_energy_bound_si", "dissipated_energy_joules",
             "energy_per_jump_joules", "nominal_area_si")  # fmt: skip
     source = "given"
+    unit = _length_unit(ds)
     if length_scale is not None:
         ls = positive("--length-scale", parse_quantity(length_scale, "length", "--length-scale"))
-    elif _from_instrument_file(ds):
-        ls, source = 1.0, "the path's lengths are metres (computed from an instrument file)"
+    elif unit == "m":
+        ls, source = 1.0, "the path's lengths are metres (its length_unit attribute)"
     else:
         ls = None
     if pressure_scale is None or ls is None:
-        why = "not in SI: give --pressure-scale" + ("" if ls else " and --length-scale")
-        return {**dict.fromkeys(keys), "si_scales": why + " (the path stores no units)"}
+        given = (("--pressure-scale", pressure_scale), ("--length-scale", ls))
+        why = "not in SI: give " + " and ".join(o for o, v in given if v is None)
+        if ls is None and unit is None:
+            stored = (
+                "the path's length unit is unknown: the file stores none (written by an "
+                "older roughcontact or the library)"
+            )
+        elif ls is None:
+            stored = f"the path's lengths are in units of its pixel size a0 (length_unit {unit!r})"
+        else:
+            stored = "the path stores no pressure unit"
+        return {**dict.fromkeys(keys), "si_scales": f"{why} ({stored})"}
     ps = positive(
         "--pressure-scale", parse_quantity(pressure_scale, "pressure", "--pressure-scale")
     )
@@ -176,11 +194,46 @@ def _si_energies(ds, length_scale, pressure_scale) -> dict:
     }
 
 
-def _from_instrument_file(ds) -> bool:
-    """A path of ``roughcontact path`` on an instrument file: its lengths are metres."""
-    name = ds.attrs.get("surface_file")
-    if not name:
-        return False
-    from ..topography import file_kind
+def _length_unit(ds):
+    """The path's length unit as stored (``length_unit``: "m" or "a0"), or None if the file
+    says nothing (it is never guessed from files that happen to be around)."""
+    unit = ds.attrs.get("length_unit")
+    return str(unit) if unit not in (None, "") else None
 
-    return file_kind(str(name)) == "instrument"  # a file gone since: "text", no claim
+
+def _scale(value, kind: str, option: str):
+    """``value`` of --length-scale/--pressure-scale checked when given (a positive,
+    finite quantity of ``kind``, e.g. '10 MPa'), whether or not it is used; kept as given."""
+    if value is None:
+        return None
+    from .._validate import positive
+    from ..criterion import parse_quantity
+
+    positive(option, parse_quantity(value, kind, option))
+    return value
+
+
+def _figure_format(name) -> str:
+    """The matplotlib format of the file ``name`` by its suffix (none: png)."""
+    from pathlib import Path
+
+    from .._validate import ParameterError
+
+    fmt = Path(str(name)).suffix[1:].lower() or "png"
+    if fmt not in ("png", "pdf", "svg", "eps", "ps", "jpg", "jpeg", "tif", "tiff", "webp"):
+        raise ParameterError(
+            f"--hysteresis-figure {str(name)!r}: unknown figure format {fmt!r}; name a .png, "
+            ".pdf or .svg file"
+        )
+    return fmt
+
+
+def _save_figure(fig, name) -> None:
+    """Render ``fig`` in memory and write it with the one writer (atomic, checked)."""
+    import io
+
+    from .._io import write_bytes_atomic
+
+    buffer = io.BytesIO()
+    fig.savefig(buffer, format=_figure_format(name), dpi=150)
+    write_bytes_atomic(name, buffer.getvalue())

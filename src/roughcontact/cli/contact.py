@@ -22,7 +22,12 @@ from ._outputs import check_fields_file, save_fields_file
 
 @click.command()
 @click.argument("surface_file", metavar="SURFACE", type=click.Path(dir_okay=False))
-@click.option("--load", type=float, default=None, help="Mean pressure N/A0 (units of E*).")
+@click.option(
+    "--load",
+    type=float,
+    default=None,
+    help="Mean pressure N/A0, in the units of --modulus (lattice units, E* = 1, by default).",
+)
 @click.option("--offset", type=float, default=None, help="Offset d of the rigid surface.")
 @_substrate_options
 @_interaction_options
@@ -44,7 +49,7 @@ def contact(surface_file, load, offset, save_fields, as_json, **options):
     if (load is None) == (offset is None):
         raise ParameterError("give exactly one of --load or --offset")
     if save_fields is not None:
-        check_fields_file(save_fields)
+        check_fields_file(save_fields, surface_file)
     h, pixel_size, surface, sub, law = _surface_substrate_law(surface_file, options)
     o = options
     res = solve(

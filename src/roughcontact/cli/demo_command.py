@@ -14,6 +14,7 @@ import click
 
 from .._validate import ParameterError, json_safe
 from ._common import _fail, _option, _output_option
+from ._outputs import force_option
 
 
 @click.command()
@@ -26,6 +27,7 @@ from ._common import _fail, _option, _output_option
     "(resumed if present).",
     default="roughcontact-demo",
 )
+@force_option
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
 def demo(size, seed, study_size, seeds, output, as_json):
     """The main job on built-in defaults.
@@ -43,11 +45,11 @@ def demo(size, seed, study_size, seeds, output, as_json):
     if study_size and study_size < 8:
         raise ParameterError(f"--study-size must be 0 (no study) or >= 8, got {study_size}")
     if study_size:
-        from .._io import check_directory_writable
         from ..workflows.demo import check_demo_study
+        from ._outputs import claim_output_directory
 
         check_demo_study(study_size, seeds)  # before the path is computed
-        check_directory_writable(output, "-o/--output")
+        claim_output_directory(output)
 
     def progress(i, n, res):
         if not as_json:

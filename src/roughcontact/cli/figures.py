@@ -8,6 +8,7 @@ import click
 
 from .._validate import DPI, TARGET_AREA, ParameterError
 from ._common import _option, _output_option
+from ._outputs import force_option
 
 
 def _load(source: Path):
@@ -32,6 +33,7 @@ def _load(source: Path):
 @click.command("figures")
 @click.argument("source", metavar="DIR", type=click.Path(exists=True, path_type=Path))
 @_output_option("Directory for the figure files (created).", "out_dir")
+@force_option
 @_option(
     "--format",
     "formats",
@@ -57,10 +59,10 @@ def figures(source, out_dir, formats, target_area, dpi):
     import matplotlib
 
     matplotlib.use("Agg")
-    from .._io import check_directory_writable
     from ..plot import save_figures
+    from ._outputs import claim_output_directory
 
-    check_directory_writable(out_dir, "-o/--output")  # before reading the study
+    claim_output_directory(out_dir, source)  # before reading the study
     ds, maps = _load(source)
     written = save_figures(ds, out_dir, formats, maps=maps, dpi=dpi, target_area=target_area)
     for paths in written.values():

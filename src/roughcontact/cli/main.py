@@ -13,6 +13,7 @@ import warnings
 
 import click
 
+from .. import _guard
 from .._io import WriteError
 from .._signals import exit_code, interruptible
 from .._validate import ParameterError
@@ -57,7 +58,7 @@ class _Group(click.Group):
     def invoke(self, ctx):
         try:
             # SIGTERM stops a command as Ctrl-C does (exit 143, 130); warnings in one line
-            with interruptible(), warnings.catch_warnings():
+            with _guard.command_scope(), interruptible(), warnings.catch_warnings():
                 warnings.showwarning = _warning_line
                 return super().invoke(ctx)
         except ParameterError as err:
@@ -69,6 +70,9 @@ class _Group(click.Group):
             _fail(str(err), EXIT_FAILURE)
         except OSError as err:
             _fail(str(err))
+        except MemoryError as err:  # past the estimates made before the work
+            why = " ".join(str(err).split()) or "an allocation failed"
+            _fail(f"out of memory: {why}; try a smaller grid", EXIT_FAILURE)
         except KeyboardInterrupt as err:
             _fail(_interrupted(err), exit_code(err))
 

@@ -69,7 +69,7 @@ def _path_values(option, start, stop, step):
     type=float,
     default=None,
     metavar="START STOP STEP",
-    help="Load control: mean pressures from START to STOP by STEP.",
+    help="Load control: mean pressures N/A0 from START to STOP by STEP, in the units of --modulus.",
 )
 @click.option(
     "--until-area",
@@ -107,6 +107,7 @@ def _path_values(option, start, stop, step):
     type=click.FloatRange(min=0),
     default=60.0,
     show_default=True,
+    callback=lambda ctx, param, value: _finite_seconds(value),
     help="Rewrite -o with the steps done so far at most this often (s; 0: every step).",
 )
 @_surface_file_options
@@ -181,7 +182,7 @@ def path(
         raise ParameterError(f"--until-area must be in (0, 1] (A_rep/A0), got {until_area:g}")
     start, stop, step = offsets if offsets is not None else loads
     given = _path_values(option, start, stop, step)  # in --offset-unit
-    check_writable(output, "-o/--output")  # before any work, not at the first checkpoint
+    check_writable(output, "-o/--output", inputs=(surface_file,))  # before any work
     if offset_unit == "bearing_area" and not (0 <= start <= 1 and 0 <= stop <= 1):
         raise ParameterError(
             f"--offsets START and STOP must be in [0, 1] with --offset-unit bearing_area "
@@ -223,6 +224,8 @@ def path(
         """Write ``partial`` (Ctrl-C/SIGTERM held back meanwhile); a full disk exits 1."""
         if surface is not None:  # an instrument file: lengths in metres
             partial.attrs.update(length_unit="m", surface_channel=surface["channel"])
+        else:  # a heights file: lengths in the unit of --pixel-size (analyze reads it)
+            partial.attrs["length_unit"] = "a0"
         try:
             with deferred():
                 _write_path(partial, output, surface_file)
@@ -300,6 +303,17 @@ def path(
         _fail("some states did not converge (see the 'converged' variable)", EXIT_NOT_CONVERGED)
     if missed:
         _fail(missed, EXIT_TARGET_NOT_REACHED)
+
+
+def _finite_seconds(value):
+    """--checkpoint-seconds: a finite number of seconds >= 0 (NaN, inf refused)."""
+    import math
+
+    if value is not None and not math.isfinite(value):
+        raise ParameterError(
+            f"--checkpoint-seconds must be a finite number of seconds >= 0, got {value!r}"
+        )
+    return value
 
 
 def _write_path(ds, output, surface_file):

@@ -18,6 +18,7 @@ import click
 from .._validate import DPI, click_check
 from ..topography.prepare import DETREND_MODES
 from ..topography.simulate import ADHESION_RANGE_GIVEN, SEEDS, SIZE
+from ._outputs import force_option
 
 __all__ = ["stick"]
 
@@ -132,6 +133,7 @@ def _pixel_size(text):
     help="Report directory: report.html (one self-contained page), result.json, "
     "summary.txt and figures (created).",
 )
+@force_option
 @click.option(
     "--format",
     "formats",
@@ -198,11 +200,11 @@ def stick(scan, channel, modulus, work, poisson, counter_modulus, counter_poisso
     from ..topography.report import summary, write_report
     from ..topography.verdict import stick as run
 
+    DPI.check("--dpi", dpi)  # checked when given, with or without -o
     if out_dir is not None:
-        from .._io import check_directory_writable
+        from ._outputs import claim_output_directory
 
-        DPI.check("--dpi", dpi)
-        check_directory_writable(out_dir, "-o/--output")  # before the analysis
+        claim_output_directory(out_dir, scan)  # before the analysis
     result = run(
         scan,
         modulus=modulus,

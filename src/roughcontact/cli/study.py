@@ -7,6 +7,7 @@ import sys
 import click
 
 from ._common import _option, _output_option
+from ._outputs import claim_output_directory, force_option
 
 EXIT_TASKS_FAILED = 1
 
@@ -120,7 +121,9 @@ def collect(out_dir, output, no_timings):
     """Combine the task files of study directory DIR into one NetCDF file."""
     from .._io import check_writable, write_netcdf_atomic
     from ..studies import collect_study
+    from ..studies.store import check_not_study_file
 
+    check_not_study_file(out_dir, output, "-o/--output")  # a task file, study.json, ...
     check_writable(output, "-o/--output")  # before reading every task file
     ds = collect_study(out_dir, include_timings=not no_timings)
     write_netcdf_atomic(ds, output)  # a full disk: one line, exit 1, no file half-written
@@ -137,6 +140,7 @@ def collect(out_dir, output, no_timings):
     "Report directory: README.md, report.html, claims.json, versions.json, data/, figures/.",
     "out_dir",
 )
+@force_option
 @_option("--confidence", default=0.95, help="Level of the intervals over seeds, in (0, 1).")
 @_option("--dpi", default=120, help="Figure resolution.")
 def report(source, out_dir, confidence, dpi):
@@ -148,7 +152,6 @@ def report(source, out_dir, confidence, dpi):
     versions.json, figures/fig2-4 (PNG) and README.md, which takes the claims of
     Pastewka & Robbins (2014) one by one and puts the study's numbers beside them.
     """
-    from .._io import check_directory_writable
     from .._validate import DPI
     from ..studies.report import write_report
 
@@ -157,7 +160,7 @@ def report(source, out_dir, confidence, dpi):
             f"must be in (0, 1), got {confidence!r}", param_hint="--confidence"
         )
     DPI.check("dpi", dpi)
-    check_directory_writable(out_dir, "-o/--output")  # before reading the study
+    claim_output_directory(out_dir, source)  # before reading the study
     from ..htmlreport import command_line
 
     result = write_report(source, out_dir, confidence=confidence, dpi=dpi, command=command_line())

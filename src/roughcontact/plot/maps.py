@@ -182,7 +182,7 @@ def study_maps(study_dir):
                 if keys is not None and ds.attrs.get("task_key") != keys.get(path.name):
                     continue  # another study's file (or other parameters): not this study
                 params = task_parameters(ds.attrs)
-        except (OSError, ValueError):
+        except Exception:  # noqa: BLE001 - unreadable or damaged (h5py's RuntimeError)
             continue
         key = json.dumps({k: params.get(k) for k in SURFACE_KEYS}, sort_keys=True)
         la = params.get("adhesion_length")

@@ -144,7 +144,15 @@ def approach_retract(
     if (offsets is None) == (loads is None):
         raise ParameterError("give exactly one of offsets or loads")
     control = "offset" if offsets is not None else "load"
-    values = np.atleast_1d(np.asarray(offsets if offsets is not None else loads, dtype=float))
+    try:
+        values = np.atleast_1d(np.asarray(offsets if offsets is not None else loads, dtype=float))
+    except (TypeError, ValueError):
+        raise ParameterError(f"{control}s must be a sequence of numbers") from None
+    if values.ndim != 1:
+        raise ParameterError(
+            f"{control}s must be a 1-D sequence of values (one per step), got an array of "
+            f"shape {values.shape}"
+        )
     if values.size == 0:
         raise ParameterError(f"{control}s must contain at least one value (the path is empty)")
     if not np.all(np.isfinite(values)):

@@ -43,8 +43,10 @@ def solve(
         the README's "Compiled loops (JAX)").
     substrate : Substrate
         Elastic substrate (shape must match ``heights``).
-    interaction : HardWall or an interaction law, optional
-        The surface interaction (default: :class:`HardWall`). The hard wall is solved by
+    interaction : HardWall, an interaction law or a registry name, optional
+        The surface interaction (default: :class:`HardWall`); a name of
+        :func:`roughcontact.interactions.registry.names` (``"hardwall"``) builds that law
+        (one that needs parameters says which: build it instead). The hard wall is solved by
         constrained conjugate gradients (Polonsky & Keer, preconditioned by the stiffness
         on the contact set), smooth laws (SmoothLJ93, LennardJones93, soft-core
         Exponential) by block-preconditioned nonlinear CG, hard-core adhesive laws
@@ -83,7 +85,7 @@ def solve(
     if tol is not None:
         tolerance("tol", tol)  # (0, 1); the float32 floor is checked with the precision
     max_iter = MAX_ITER.check("max_iter", max_iter)
-    interaction = HardWall() if interaction is None else interaction
+    interaction = HardWall() if interaction is None else _law(interaction, substrate)
     if isinstance(interaction, HardWall):
         return polonsky_keer(
             heights,
@@ -113,3 +115,26 @@ def solve(
     if not math.isfinite(float(load)):
         raise ParameterError(f"load must be finite, got {load!r}")
     return solve_at_load(minimize, heights, substrate, interaction, load=load, **kwargs)
+
+
+def _law(interaction, substrate):
+    """``interaction`` as a law object: a registry name (``"hardwall"``, ...) is built by
+    :func:`roughcontact.interactions.registry.make_law` (a law that needs parameters says
+    which); anything that is not a law is a one-line ParameterError."""
+    if isinstance(interaction, str):
+        from ..interactions.registry import make_law
+
+        return make_law(
+            interaction,
+            contact_modulus=getattr(substrate, "contact_modulus", 1.0),
+            pixel_size=getattr(substrate, "pixel_size", 1.0),
+        )
+    if not isinstance(interaction, HardWall) and not hasattr(interaction, "hard_core"):
+        from ..interactions.registry import names
+
+        raise ParameterError(
+            "interaction must be a law of roughcontact.interactions (e.g. HardWall(), "
+            f"LJ93Smooth(...)) or one of the names {', '.join(names())}, got "
+            f"{type(interaction).__name__} {interaction!r}"[:300]
+        )
+    return interaction

@@ -19,14 +19,19 @@ The local workers keep their scratch files (spilled data, worker directories) in
 directory of their own, made fresh for each run by :func:`tempfile.mkdtemp` (mode 0700:
 no other user can list, rename or replace what is in it, as they could in a shared
 ``$TMPDIR/dask-scratch-space`` created by someone else with mode 0777) and removed when
-the cluster closes (:func:`close`). Their number is at most :data:`MAX_WORKERS_PER_CORE`
-per CPU core.
+the cluster closes (:func:`close`). Dask's ``temporary-directory`` points there while the
+cluster is made, so the scheduler's scratch space (``dask-scratch-space/global.lock``,
+``purge.lock``) is inside it too: nothing touches the shared path, where a planted link
+could make the run create a file elsewhere with the user's rights. A run holds an
+advisory lock on :data:`SCRATCH_LOCK` in its directory; at the next start, directories
+left by a killed run (ours by owner, older than :data:`STALE_SCRATCH_SECONDS`, their lock
+free) are removed (:func:`remove_stale_scratch`). Their number is at most
+:data:`MAX_WORKERS_PER_CORE` per CPU core.
 """
 
 from __future__ import annotations
 
 import os
-import shutil
 import socket
 import sys
 import tempfile
@@ -35,6 +40,9 @@ import weakref
 from pathlib import Path
 
 from .._validate import ParameterError
+from ._scratch import SCRATCH_LOCK as SCRATCH_LOCK
+from ._scratch import SCRATCH_PREFIX, lock_scratch, remove_scratch, remove_stale_scratch
+from ._scratch import STALE_SCRATCH_SECONDS as STALE_SCRATCH_SECONDS
 from .task import run_task
 
 __all__ = [
@@ -44,8 +52,10 @@ __all__ = [
     "close",
     "connect",
     "outcomes",
+    "remove_stale_scratch",
     "tls_security",
 ]
+
 
 CONNECT_TIMEOUT = 5.0  # seconds to reach a remote scheduler before giving up
 DASHBOARD_ADDRESS = "127.0.0.1:8787"  # the local dashboard, when asked for (loopback only)
@@ -106,10 +116,18 @@ def _local_cluster(n: int, dashboard: bool):
             f"the local Dask cluster needs the 'cryptography' package for its TLS "
             f"credentials ({err}); install it (pip install cryptography)"
         ) from None
+    import dask
+
     this = sys.modules[__name__]  # the quiet classes: module attributes, made on first use
-    # private scratch space: fresh, mode 0700, removed by close() (or at exit)
-    scratch = tempfile.mkdtemp(prefix="roughcontact-dask-")
-    os.chmod(scratch, 0o700)
+    remove_stale_scratch()  # what a killed run left behind (ours, old, unlocked)
+    # private scratch space: fresh, mode 0700, locked while in use, removed by close()
+    scratch = tempfile.mkdtemp(prefix=SCRATCH_PREFIX)
+    try:  # Ctrl-C right now: the fresh directory goes too
+        os.chmod(scratch, 0o700)
+        held = lock_scratch(scratch)
+    except BaseException:
+        remove_scratch(scratch, None)
+        raise
     scheduler = {
         "cls": Scheduler if dashboard else this._QuietScheduler,
         "options": {
@@ -139,35 +157,99 @@ def _local_cluster(n: int, dashboard: bool):
         },
     }
     try:
-        cluster = SpecCluster(
-            scheduler=scheduler,
-            workers={i: worker for i in range(n)},
-            worker=worker,
-            security=security,
-            silence_logs=logging.ERROR,
-        )
-    except BaseException:
-        shutil.rmtree(scratch, ignore_errors=True)
+        # the scheduler's scratch space (Dask: temporary-directory/dask-scratch-space) in
+        # the private directory too, never in the shared $TMPDIR/dask-scratch-space
+        with dask.config.set({"temporary-directory": scratch}):
+            cluster = SpecCluster(
+                scheduler=scheduler,
+                workers={i: worker for i in range(n)},
+                worker=worker,
+                security=security,
+                silence_logs=logging.ERROR,
+            )
+    except BaseException:  # Ctrl-C while it starts: nothing left for Dask's exit hook
+        _quiet_dask()
+        _forget(security=security)
+        remove_scratch(scratch, held)
         raise
-    cluster._roughcontact_scratch = weakref.finalize(
-        cluster, shutil.rmtree, scratch, ignore_errors=True
-    )
+    cluster._roughcontact_scratch = weakref.finalize(cluster, remove_scratch, scratch, held)
     return cluster
 
 
-def close(client, cluster) -> None:
-    """Close ``client`` and the local ``cluster`` (if any), then remove its scratch space."""
+#: seconds the closing of the local cluster may take after Ctrl-C or SIGTERM
+FAST_CLOSE_TIMEOUT = 5.0
+
+
+def close(client, cluster, *, fast: bool = False) -> None:
+    """Close ``client`` and the local ``cluster`` (if any), then remove its scratch space.
+
+    ``fast`` (after Ctrl-C or SIGTERM): the worker processes are killed first (the tasks
+    they run are lost anyway; every finished one is on disk) and the closing is bounded
+    by :data:`FAST_CLOSE_TIMEOUT`, so the command exits at once instead of waiting for
+    tasks in the middle of a solve. Dask's own log lines about the connections that
+    then break are not printed, and Dask's exit hook is not left a cluster to close again.
+    """
+    _quiet_dask()
     try:
         if client is not None:
-            client.close()
+            client.close(timeout=FAST_CLOSE_TIMEOUT) if fast else client.close()
+    except Exception:  # noqa: BLE001 - a scheduler gone already: nothing to close
+        if not fast:
+            raise
     finally:
         if cluster is not None:
             try:
-                cluster.close()
+                if fast:
+                    _kill_workers(cluster)
+                    try:
+                        cluster.close(timeout=FAST_CLOSE_TIMEOUT)
+                    except Exception:  # noqa: BLE001 - half-started or timed out
+                        pass
+                else:
+                    cluster.close()
             finally:
+                _forget(cluster)
                 remove = getattr(cluster, "_roughcontact_scratch", None)
                 if remove is not None:
                     remove()
+
+
+def _quiet_dask() -> None:
+    """No more log lines from Dask in this process (its cluster is being closed)."""
+    import logging
+
+    logging.getLogger("distributed").setLevel(logging.CRITICAL + 1)
+
+
+def _kill_workers(cluster) -> None:
+    """SIGKILL the local worker processes (their nannies then find them gone)."""
+    import signal
+
+    for nanny in list(getattr(cluster, "workers", {}).values()):
+        try:
+            pid = nanny.pid
+        except Exception:  # noqa: BLE001 - not started (yet)
+            pid = None
+        if pid:
+            try:
+                os.kill(pid, signal.SIGKILL)
+            except OSError:
+                pass
+
+
+def _forget(cluster=None, security=None) -> None:
+    """Take ``cluster`` (or every cluster made with ``security``, e.g. one whose start
+    was interrupted) off Dask's list of clusters to close at exit: closed here already,
+    a second close would only print errors (``AssertionError: Status.init``)."""
+    try:
+        from distributed.deploy.spec import SpecCluster
+    except ImportError:  # pragma: no cover - distributed is a dependency
+        return
+    for instance in list(SpecCluster._instances):
+        spec = getattr(instance, "scheduler_spec", None) or {}
+        ours = security is not None and spec.get("options", {}).get("security") is security
+        if instance is cluster or ours:
+            SpecCluster._instances.discard(instance)
 
 
 def max_workers() -> int:
@@ -287,7 +369,7 @@ def connect(scheduler, workers, security=None, dashboard=False):
             # the task files, a notebook's computations) stays local, no distributed locks
             client = Client(cluster, set_as_default=False)
         except BaseException:  # Ctrl-C while it starts too: closed, its scratch removed
-            close(client, cluster)
+            close(client, cluster, fast=True)
             raise
         return client, cluster
     if isinstance(scheduler, Client):

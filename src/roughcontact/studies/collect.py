@@ -83,6 +83,12 @@ FOREIGN = (
 )
 
 
+DAMAGED = (
+    "its task file is not a readable NetCDF file (damaged): ignored; run the study again "
+    "with --resume to compute it"
+)
+
+
 def _read(out, task):
     """(status, reason, attrs, step arrays) of one task (a manifest entry)."""
     import xarray as xr
@@ -100,6 +106,8 @@ def _read(out, task):
                     return "done", "", dict(ds.attrs), steps
     except (OSError, ValueError, KeyError):
         pass
+    except Exception:  # noqa: BLE001 - damaged bytes: h5py's checksum RuntimeError, ...
+        return "missing", DAMAGED, {}, {}
     if failure.exists() or failure.is_symlink():
         try:
             if not store.is_regular(failure):

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from .._backend import check_device
-from .._signals import Terminated, exit_code, interruptible
+from .._signals import Terminated, deferred, exit_code, interruptible
 from .._validate import ParameterError
 from . import cluster, lock, store
 from .spec import StudySpec, load_study
@@ -251,6 +251,26 @@ def _stopped(err, spec, out) -> KeyboardInterrupt:
     return Terminated(message) if terminated else KeyboardInterrupt(message)
 
 
+def _close(client, local, stopped: bool, spec, out) -> None:
+    """Close the local cluster; once stopped, at once and without a second interruption
+    (Ctrl-C pressed again while it closes) cutting the clean-up short. Ctrl-C or SIGTERM
+    during an ordinary close: the close is finished at once and the interruption raised
+    saying what is on disk."""
+    if not stopped:
+        try:
+            cluster.close(client, local)
+            return
+        except KeyboardInterrupt as err:
+            interrupted = err
+        _close(client, local, True, spec, out)
+        raise _stopped(interrupted, spec, out) from None
+    try:
+        with deferred():
+            cluster.close(client, local, fast=True)
+    except KeyboardInterrupt:
+        pass  # the first interruption is on its way out already
+
+
 def _pending(spec, out, resume):
     """``(done, todo)``: attributes of the finished tasks by id, the tasks left to run."""
     done, todo = {}, []
@@ -288,13 +308,15 @@ def _run_locked(spec, out, resume, where, progress, t0):
         client, local = cluster.connect(scheduler, workers, security, dashboard)
         if dashboard:
             print(f"Dask dashboard: {client.dashboard_link}", file=sys.stderr, flush=True)
+    stopped = False
     try:
         unconverged, failed, analysis_errors = _drive(spec, out, todo, client, done, progress)
     except KeyboardInterrupt as err:  # Ctrl-C or SIGTERM; the cluster closes below
+        stopped = True
         raise _stopped(err, spec, out) from None
     finally:
-        if local is not None:
-            cluster.close(client, local)  # and its private scratch directory
+        if local is not None:  # and its private scratch directory; at once when stopped
+            _close(client, local, stopped, spec, out)
         elif client is not None and client is not scheduler:
             client.close()
     return StudySummary(

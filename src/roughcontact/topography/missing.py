@@ -103,8 +103,8 @@ def missing_policy(name, data, fill_missing, periodic, info, *, outliers: int = 
     )
     if fill_missing is None and fraction > MISSING_FILL_MAX:
         raise ParameterError(
-            f"{name}: {fraction:.1%} of the points ({count} of {missing.size}) are missing "
-            f"(NaN or masked by the instrument{of_them}), more than the "
+            f"{name}: {_percent(fraction)} of the points ({count} of {missing.size}) are "
+            f"missing (NaN or masked by the instrument{of_them}), more than the "
             f"{MISSING_FILL_MAX:.0%} filled by default; {_option_text()} fills them by "
             "harmonic interpolation, which removes the roughness of the filled area"
         )
@@ -152,5 +152,16 @@ def fill_note(missing: dict, total: int | None = None) -> str:
             f"than that of the measured points alone{why}"
         )
     if large:
-        line += f"; {f:.1%} is more than the {MISSING_FILL_MAX:.0%} filled by default"
+        line += f"; {_percent(f)} is more than the {MISSING_FILL_MAX:.0%} filled by default"
     return line
+
+
+def _percent(fraction: float, limit: float = MISSING_FILL_MAX) -> str:
+    """``fraction`` in percent with the digits that tell it from ``limit`` and keep it
+    within 1 % of its value (1.05 %, not the 1.0 % that reads as the limit itself)."""
+    for digits in range(1, 7):
+        text = f"{fraction:.{digits}%}"
+        close = abs(float(text[:-1]) - 100 * fraction) <= 0.01 * 100 * fraction
+        if close and (fraction == limit or text != f"{limit:.{digits}%}"):
+            return text
+    return f"{fraction:.7%}"

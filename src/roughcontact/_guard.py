@@ -1,0 +1,261 @@
+"""What the one writer may replace, and the record of the output directories it fills.
+
+:func:`roughcontact._io.write_bytes_atomic` renames a new file over its target. A rename
+replaces whatever directory entry is there, so the writer first asks :func:`refusal`:
+
+- only a regular file is replaced: a device (``/dev/null``, ``/dev/full``), a FIFO, a
+  socket or a directory at the name is refused;
+- a symbolic link at a name the user gave (registered by
+  :func:`roughcontact._io.check_writable`: ``-o /dev/stdout``) is refused; inside the
+  directories the program fills (a study, a report), a link planted under one of its own
+  names is replaced, never followed;
+- a write-protected file (no write permission bit, or not writable by this user) is
+  refused: its mode would silently become the default one;
+- an input of the command (:func:`protect`: the same ``st_dev``/``st_ino``, whatever
+  path or hard link names it) is refused.
+
+The command line checks its outputs with the same rules before any work
+(:func:`roughcontact._io.check_writable`), so a refusal costs nothing computed.
+
+A report directory (``stick -o``, ``figures -o``, ``study report -o``, ``demo -o``) is
+claimed with :func:`claim_directory` before the work: a directory holding files the
+program did not write there is refused (one line) unless ``force``. Every file the writer
+then puts below a claimed directory is recorded in its manifest, :data:`MANIFEST_NAME`
+(before the file is written: a kill leaves no file of ours unrecorded), so a rerun into
+the same directory finds only its own files and goes ahead.
+
+The state lives for one command (:func:`command_scope`, around every command line
+command); outside one, nothing is protected or claimed and the writer's rules on the
+target's kind and permissions still apply.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import json
+import os
+import re
+import stat
+from pathlib import Path
+
+from .errors import ParameterError
+
+__all__ = [
+    "MANIFEST_NAME",
+    "claim_directory",
+    "command_scope",
+    "name_output",
+    "protect",
+    "record",
+    "refusal",
+]
+
+#: The record of the files roughcontact wrote into an output directory (JSON).
+MANIFEST_NAME = ".roughcontact-manifest.json"
+_MANIFEST_FORMAT = "roughcontact-output-manifest"
+_MANIFEST_LIMIT = 16 << 20  # bytes read of a manifest at most
+#: names below a claimed directory that are ours without a record: the manifest, a
+#: directory lock (:mod:`roughcontact.studies.lock`), the writer's temporaries and probes
+_OURS = re.compile(
+    r"^(\.roughcontact\.lock|\.roughcontact-probe-[0-9a-f]{12}|\..+\.[0-9a-f]{12}\.(tmp|probe))$"
+)
+_KINDS = (
+    (stat.S_ISCHR, "a character device"),
+    (stat.S_ISBLK, "a block device"),
+    (stat.S_ISFIFO, "a FIFO (named pipe)"),
+    (stat.S_ISSOCK, "a socket"),
+    (stat.S_ISDIR, "a directory"),
+)
+
+
+class _State:
+    def __init__(self):
+        self.inputs: dict[tuple[int, int], str] = {}  # (st_dev, st_ino) -> name given
+        self.named: set[str] = set()  # absolute paths of outputs the user named
+        self.claimed: dict[str, list[str]] = {}  # absolute directory -> recorded names
+
+
+_state = _State()
+
+
+@contextlib.contextmanager
+def command_scope():
+    """A fresh state (no inputs, outputs or directories) for one command, reset after."""
+    global _state
+    previous, _state = _state, _State()
+    try:
+        yield
+    finally:
+        _state = previous
+
+
+def _abs(path) -> str:
+    return os.path.abspath(os.fspath(path))
+
+
+def protect(*paths) -> None:
+    """Register the existing ``paths`` (links followed) as inputs: never replaced."""
+    for p in paths:
+        if p is None:
+            continue
+        try:
+            st = os.stat(p)
+        except (OSError, ValueError):
+            continue  # missing: the reader says so
+        _state.inputs[(st.st_dev, st.st_ino)] = str(p)
+
+
+def name_output(path) -> None:
+    """Register ``path`` as an output the user named: a link there is refused, not replaced."""
+    _state.named.add(_abs(path))
+
+
+def _kind(mode: int) -> str:
+    for test, words in _KINDS:
+        if test(mode):
+            return words
+    return "not a regular file"
+
+
+def _write_protected(path, st) -> bool:
+    if not st.st_mode & 0o222:
+        return True  # mode 444: protected even from root, who may write anything
+    try:
+        return not os.access(path, os.W_OK, follow_symlinks=False)
+    except (NotImplementedError, TypeError):  # pragma: no cover - no follow_symlinks here
+        return not os.access(path, os.W_OK)
+
+
+def refusal(path, *, named: bool | None = None) -> str | None:
+    """Why the writer must not replace ``path`` (words after its name), or None.
+
+    ``named``: a name the user gave (a link is refused); default: registered by
+    :func:`name_output`.
+    """
+    try:
+        st = os.lstat(path)
+    except FileNotFoundError:
+        return None
+    except OSError as err:
+        return f"cannot be checked ({err.strerror or err})"
+    if named is None:
+        named = _abs(path) in _state.named
+    if stat.S_ISLNK(st.st_mode):
+        if not named:
+            return None  # a planted link under the program's own name: replaced
+        try:
+            target = os.readlink(path)
+        except OSError:
+            target = "?"
+        return (
+            f"is a symbolic link (to {target!r}); only a regular file is replaced: name "
+            "the file itself"
+        )
+    if not stat.S_ISREG(st.st_mode):
+        return f"is {_kind(st.st_mode)}; only a regular file is replaced"
+    if (st.st_dev, st.st_ino) in _state.inputs:
+        given = _state.inputs[(st.st_dev, st.st_ino)]
+        same = "" if _abs(given) == _abs(path) else f", the file {given!r}"
+        return f"is an input of this command{same}; it is never overwritten"
+    if _write_protected(path, st):
+        return f"is write-protected (mode {stat.S_IMODE(st.st_mode):04o}); it is not replaced"
+    return None
+
+
+def check_target(path, what: str, *, named: bool | None = True) -> None:
+    """Raise a one-line ParameterError if the writer would refuse ``path``."""
+    if (why := refusal(path, named=named)) is not None:
+        raise ParameterError(f"{what} {str(path)!r} {why}; refused")
+
+
+# --- the manifest of an output directory ----------------------------------------------
+
+
+def _read_manifest(directory: Path) -> list[str]:
+    """The names recorded in ``directory``'s manifest ([] if none or unreadable)."""
+    path = directory / MANIFEST_NAME
+    try:
+        if not stat.S_ISREG(os.lstat(path).st_mode):
+            return []
+        with open(path, "rb") as f:
+            data = json.loads(f.read(_MANIFEST_LIMIT).decode("utf-8"))
+    except (OSError, ValueError):
+        return []
+    files = data.get("files") if isinstance(data, dict) else None
+    if data.get("format") != _MANIFEST_FORMAT or not isinstance(files, list):
+        return []
+    return [f for f in files if isinstance(f, str)]
+
+
+def _foreign(directory: Path, recorded: set[str], most: int = 3) -> list[str]:
+    """Up to ``most`` entries below ``directory`` that roughcontact did not write there:
+    any file not recorded (nor a lock or temporary of ours), any link, FIFO or device."""
+    found = []
+    for root, dirs, files in os.walk(directory, followlinks=False):
+        dirs.sort()
+        for name in sorted(files) + [d for d in dirs if os.path.islink(os.path.join(root, d))]:
+            full = os.path.join(root, name)
+            rel = os.path.relpath(full, directory)
+            if rel == MANIFEST_NAME:
+                continue
+            try:
+                regular = stat.S_ISREG(os.lstat(full).st_mode)
+            except OSError:
+                continue  # gone meanwhile
+            if regular and (rel in recorded or _OURS.match(name)):
+                continue
+            found.append(rel)
+            if len(found) >= most:
+                return found
+    return found
+
+
+def claim_directory(path, what: str = "-o/--output", *, force: bool = False) -> Path:
+    """Claim the output directory ``path`` for this command, before any work.
+
+    It must be writable (:func:`roughcontact._io.check_directory_writable`); if it
+    exists, every file below it must be one that roughcontact wrote there (its manifest)
+    unless ``force``. Files the writer then puts below ``path`` are recorded.
+
+    Raises
+    ------
+    ParameterError
+        One line naming ``what``, ``path`` and up to three files it holds.
+    """
+    from ._io import check_directory_writable
+
+    directory = check_directory_writable(path, what)
+    recorded = _read_manifest(directory) if directory.is_dir() else []
+    if directory.is_dir() and not force:
+        foreign = _foreign(directory, set(recorded))
+        if foreign:
+            names = ", ".join(repr(f) for f in foreign) + (", ..." if len(foreign) >= 3 else "")
+            raise ParameterError(
+                f"{what} {str(directory)!r} holds files roughcontact did not write there "
+                f"({names}); name a new or empty directory, or add --force to write into it "
+                "anyway (files of the names written are then replaced)"
+            )
+    _state.claimed[_abs(directory)] = list(recorded)
+    return directory
+
+
+def record(final) -> None:
+    """Record ``final`` in the manifest of each claimed directory holding it (before the
+    writer writes it)."""
+    if not _state.claimed:
+        return
+    target = _abs(final)
+    for directory, names in _state.claimed.items():
+        rel = os.path.relpath(target, directory)
+        if rel.startswith(os.pardir) or rel in names or os.path.basename(rel) == MANIFEST_NAME:
+            continue
+        names.append(rel)
+        _write_manifest(Path(directory), names)
+
+
+def _write_manifest(directory: Path, names: list[str]) -> None:
+    from ._io import write_bytes_atomic
+
+    text = json.dumps({"format": _MANIFEST_FORMAT, "files": sorted(names)}, indent=1)
+    directory.mkdir(parents=True, exist_ok=True)
+    write_bytes_atomic(directory / MANIFEST_NAME, (text + "\n").encode("utf-8"))
