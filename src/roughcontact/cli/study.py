@@ -59,7 +59,9 @@ def study():
 @click.option(
     "--device",
     default=None,
-    help="Where the workers compute: cpu (default), cuda or cuda:N (CuPy on a GPU).",
+    help="Where the workers compute: cpu (default), cuda or cuda:N (CuPy on a GPU). cuda on "
+    "the local cluster: one worker per visible GPU (CUDA_VISIBLE_DEVICES, else nvidia-smi), "
+    "each pinned to its own; cuda:N: every worker on GPU N.",
 )
 @click.option(
     "--dashboard",

@@ -40,6 +40,7 @@ import weakref
 from pathlib import Path
 
 from .._validate import ParameterError
+from ._gpus import pinned_worker
 from ._scratch import SCRATCH_LOCK as SCRATCH_LOCK
 from ._scratch import SCRATCH_PREFIX, lock_scratch, remove_scratch, remove_stale_scratch
 from ._scratch import STALE_SCRATCH_SECONDS as STALE_SCRATCH_SECONDS
@@ -101,8 +102,9 @@ def __getattr__(name):
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
-def _local_cluster(n: int, dashboard: bool):
-    """An in-process cluster on 127.0.0.1 with TLS (temporary credentials), no HTTP port."""
+def _local_cluster(n: int, dashboard: bool, gpus=()):
+    """An in-process cluster on 127.0.0.1 with TLS (temporary credentials), no HTTP port;
+    with ``gpus``, worker i sees only ``gpus[i % len(gpus)]`` (:mod:`._gpus`)."""
     import logging
 
     from distributed import Nanny, Scheduler, SpecCluster
@@ -162,7 +164,7 @@ def _local_cluster(n: int, dashboard: bool):
         with dask.config.set({"temporary-directory": scratch}):
             cluster = SpecCluster(
                 scheduler=scheduler,
-                workers={i: worker for i in range(n)},
+                workers={i: pinned_worker(worker, gpus, i) for i in range(n)},
                 worker=worker,
                 security=security,
                 silence_logs=logging.ERROR,
@@ -340,12 +342,14 @@ def check_options(scheduler, workers, security, dashboard) -> None:
         )
 
 
-def connect(scheduler, workers, security=None, dashboard=False):
+def connect(scheduler, workers, security=None, dashboard=False, gpus=()):
     """A Dask client (and the cluster we own, or None); errors before any work starts.
 
     ``security`` (a ``distributed.security.Security``) is used to reach a remote
     scheduler; ``dashboard`` opens the local cluster's dashboard on
-    :data:`DASHBOARD_ADDRESS` (else the local cluster opens no HTTP port).
+    :data:`DASHBOARD_ADDRESS` (else the local cluster opens no HTTP port); ``gpus``
+    (``CUDA_VISIBLE_DEVICES`` entries): the local cluster's workers, by default one per
+    GPU, each pinned to its own.
     """
     from distributed import Client
 
@@ -353,7 +357,7 @@ def connect(scheduler, workers, security=None, dashboard=False):
     if scheduler is None:
         import dask
 
-        n = _default_workers() if workers is None else workers
+        n = (len(gpus) or _default_workers()) if workers is None else workers
         # Dask starts its workers with MALLOC_TRIM_THRESHOLD_=65536, which also turns off
         # glibc's adaptive mmap threshold: every array above 128 kB is then mmapped and
         # unmapped: page faults and TLB shootdowns cost the demo 73 s of CPU time in the
@@ -364,7 +368,7 @@ def connect(scheduler, workers, security=None, dashboard=False):
             with dask.config.set(
                 {"distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None}
             ):
-                cluster = _local_cluster(n, dashboard)
+                cluster = _local_cluster(n, dashboard, gpus)
             # not the default client: dask work of this process (xarray's NetCDF writes of
             # the task files, a notebook's computations) stays local, no distributed locks
             client = Client(cluster, set_as_default=False)

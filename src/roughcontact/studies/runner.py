@@ -17,6 +17,7 @@ from .._backend import check_device
 from .._signals import Terminated, deferred, exit_code, interruptible
 from .._validate import ParameterError
 from . import cluster, lock, store
+from ._gpus import visible_gpus
 from .spec import StudySpec, load_study
 
 __all__ = ["StudySummary", "run_study"]
@@ -163,7 +164,10 @@ def run_study(
     device : {None, "cpu", "cuda", "cuda:N"}
         Where the workers compute (see :func:`roughcontact.to_device`); checked before
         any work. Not part of the task keys: a study resumed on another device skips
-        the tasks already done.
+        the tasks already done. ``"cuda"`` on the local cluster starts one worker per
+        visible GPU (``CUDA_VISIBLE_DEVICES``, else ``nvidia-smi -L``), each seeing only
+        its own (``workers`` more than GPUs share them in turn); ``"cuda:N"`` puts every
+        worker on GPU N.
     security : distributed.security.Security, optional
         TLS settings to reach a remote ``scheduler`` (``tls://...``), e.g.
         ``cluster.tls_security(ca_file, cert, key)`` or
@@ -209,8 +213,10 @@ def run_study(
     # SIGTERM (a scheduler's end of job, kill) stops the run as Ctrl-C does: the cluster
     # is shut down, the lock released, Terminated (a KeyboardInterrupt) raised
     with interruptible(), lock.directory_lock(out, hint=_LOCKED_HINT):
+        # --device cuda on the local cluster: one worker per visible GPU, pinned to it
+        gpus = visible_gpus() if device == "cuda" and scheduler is None else ()
         return _run_locked(
-            spec, out, resume, (scheduler, workers, security, dashboard), progress, t0
+            spec, out, resume, (scheduler, workers, security, dashboard, gpus), progress, t0
         )
 
 
@@ -293,7 +299,7 @@ def _pending(spec, out, resume):
 
 def _run_locked(spec, out, resume, where, progress, t0):
     """:func:`run_study` once the directory's lock is held (``where``: the cluster options)."""
-    scheduler, workers, security, dashboard = where
+    scheduler, workers, security, dashboard, gpus = where
     if not resume and store.existing_results(out):
         raise ParameterError(
             f"{str(out)!r} already holds study results; pass --resume (resume=True) to "
@@ -305,7 +311,7 @@ def _run_locked(spec, out, resume, where, progress, t0):
     client = local = None
     if todo and scheduler != "synchronous":
         # an unreachable scheduler fails here
-        client, local = cluster.connect(scheduler, workers, security, dashboard)
+        client, local = cluster.connect(scheduler, workers, security, dashboard, gpus)
         if dashboard:
             print(f"Dask dashboard: {client.dashboard_link}", file=sys.stderr, flush=True)
     stopped = False
