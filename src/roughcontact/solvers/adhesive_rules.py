@@ -139,11 +139,16 @@ def attraction_peak_gap(law) -> float:
     return float(gaps[int(np.argmin(p))]) if p.min() < 0 else 0.0
 
 
-def tension_lost(law, load, min_gap, peak_gap) -> bool:
+def tension_lost(law, load, min_gap, peak_gap, xp=None) -> bool:
     """Whether a tensile ``load`` (< 0, pressure) can no longer be carried as the surfaces
     separate: every gap beyond the law's range, or beyond its attraction's peak
     (``peak_gap``) with less tension at the smallest gap ``min_gap`` than ``-load`` (no
-    site can then pull harder, and separating further pulls less)."""
+    site can then pull harder, and separating further pulls less). With ``xp`` (a compiled
+    loop's namespace) the same rule on 0-d arrays, a boolean 0-d array."""
+    if xp is not None:
+        tension = -law.pressure(xp.reshape(min_gap, (1,)))[0]
+        beyond = (min_gap >= law.cutoff) | ((min_gap > peak_gap) & (tension < -load))
+        return (load < 0) & beyond
     if load >= 0:
         return False
     if min_gap >= law.cutoff:

@@ -59,13 +59,15 @@ ONE_MINIMISATION_LOADS = 100.0
 
 def _one_minimisation(minimize, heights, substrate) -> bool:
     """Whether ``minimize`` takes the load itself (:mod:`._free_mean`): the smooth or the
-    bounded solver on NumPy heights, a periodic substrate with a rigid mean."""
+    bounded solver on NumPy heights, or a compiled loop that says so (``takes_load``:
+    :mod:`._adhesive_jax`), on a periodic substrate with a rigid mean."""
     from .bounded import minimize_energy_bounded
     from .smooth import minimize_energy
 
     periodic = tuple(substrate.work_shape) == tuple(substrate.shape)
-    return (minimize in (minimize_energy, minimize_energy_bounded) and is_numpy_array(heights)
-            and periodic and substrate.rigid_mean)  # fmt: skip
+    numpy = minimize in (minimize_energy, minimize_energy_bounded) and is_numpy_array(heights)
+    return ((numpy or getattr(minimize, "takes_load", False)) and periodic
+            and substrate.rigid_mean)  # fmt: skip
 
 
 def solve_at_load(
