@@ -178,3 +178,15 @@ def test_the_bounded_loop_takes_the_load_without_the_host(x64):
     traction = np.asarray(bj.fields(final, k, HARD_CORE)[0])
     assert rel_l2(traction, ref.pressure) <= 1e-6
     assert abs(float(traction.mean()) - 1e-3) <= 1e-8
+
+
+def test_physical_scale_on_the_device(x64):
+    # load control's pressure scale from JAX heights: the rms slope computed on their
+    # device (one scalar read, not the grid), the NumPy value
+    from roughcontact.solvers.adhesive_rules import rms_slope
+
+    h, sub = surface()
+    assert rms_slope(jnp.asarray(h), 1.0) == pytest.approx(rms_slope(h, 1.0), rel=1e-12)
+    assert physical_pressure_scale(jnp.asarray(h), sub, LAW) == pytest.approx(
+        physical_pressure_scale(h, sub, LAW), rel=1e-12
+    )

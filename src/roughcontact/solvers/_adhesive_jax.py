@@ -14,7 +14,6 @@ import math
 import time
 
 import jax.numpy as jnp
-import numpy as np
 
 from .._validate import ParameterError
 from ._pk_jax import check_jax_inputs
@@ -106,7 +105,7 @@ def minimize_energy_jax(
         return it, residual, status, message, *moved
 
     def physical():  # only for a stop at the floor (a transfer of the heights, then)
-        return physical_pressure_scale(np.asarray(h), substrate, interaction)
+        return physical_pressure_scale(h, substrate, interaction)
 
     scalars = (st.it, st.residual, st.status, st.best, st.floor_best, jnp.max(jnp.abs(st.p)),
                jnp.min(st.gap))  # fmt: skip

@@ -41,7 +41,7 @@ import dataclasses
 import math
 import time
 
-from .._backend import dtype_name, is_numpy_array, to_numpy
+from .._backend import dtype_name, is_numpy_array
 from .adhesive_rules import carrying, lowest_smooth_offset, physical_pressure_scale
 from .inputs import check_problem, checked_heights, height_statistics
 from .result import SolveStatus
@@ -141,7 +141,7 @@ def solve_at_load(
     if _one_minimisation(minimize, h, substrate) and (
         interaction.hard_core  # full contact on the wall carries any load: no runaway
         or abs(load) <= ONE_MINIMISATION_LOADS
-        * physical_pressure_scale(to_numpy(h), substrate, interaction)
+        * physical_pressure_scale(h, substrate, interaction)
     ):
         # the load inside the one minimisation (:mod:`._free_mean`): the cost of an
         # offset-controlled solve; the nested search below only where it fails
@@ -192,7 +192,7 @@ def solve_at_load(
     if interaction.hard_core and substrate.rigid_mean:
         lowest = stats["mean"]
     elif substrate.rigid_mean:  # no lower than full contact at the load (adhesive_rules)
-        pressure_scale = physical_pressure_scale(to_numpy(h), substrate, interaction)
+        pressure_scale = physical_pressure_scale(h, substrate, interaction)
         lowest = lowest_smooth_offset(interaction, stats["mean"], load, pressure_scale)
     for _ in range(60):
         keep_only(d_a)
