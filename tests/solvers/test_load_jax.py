@@ -190,3 +190,24 @@ def test_physical_scale_on_the_device(x64):
     assert physical_pressure_scale(jnp.asarray(h), sub, LAW) == pytest.approx(
         physical_pressure_scale(h, sub, LAW), rel=1e-12
     )
+
+
+@pytest.fixture()
+def x32():
+    old = bool(jax.config.jax_enable_x64)
+    jax.config.update("jax_enable_x64", False)
+    yield
+    jax.config.update("jax_enable_x64", old)
+
+
+@pytest.mark.parametrize("law", [LAW, HARD_CORE])
+def test_float32_load_control(x32, law):
+    # float32 heights with JAX's x64 switch off: float32 fields, the load carried to the
+    # float32 tolerance, iterations as the NumPy float32 one-minimisation solve's (1.25x)
+    h, sub = surface()
+    ref = rc.solve(h, sub, law, load=1e-3, dtype="float32")
+    res = rc.solve(jnp.asarray(h, dtype=jnp.float32), sub, law, load=1e-3)
+    assert res.status is SolveStatus.CONVERGED, res.message
+    assert res.pressure.dtype == jnp.float32 and abs(res.load - 1e-3) <= 2 * res.tol
+    assert res.iterations <= 1.25 * ref.iterations + 1
+    assert rel_l2(res.pressure, np.asarray(ref.pressure, dtype=float)) <= 1e-3

@@ -227,9 +227,11 @@ def _detached(load, it, min_gap):
 
 def solve_jax(heights, substrate, interaction, *, load, offset, **kwargs):
     """:func:`.solve.solve` for an adhesive law on JAX heights: the compiled loop of the
-    law's kind (smooth or hard-core) at an offset, or under load control the offset search
-    of :func:`.load_control.solve_at_load` around compiled solves (each warm-started on
-    the device from the nearest state)."""
+    law's kind (smooth or hard-core) at an offset, or under load control
+    :func:`.load_control.solve_at_load` with that loop as its minimiser: the load inside
+    the compiled loop's one minimisation (``takes_load``), and where the NumPy loop falls
+    back to the offset search around nested solves, that search around compiled solves
+    (each warm-started on the device from the nearest state)."""
     minimize = minimize_energy_bounded_jax if interaction.hard_core else minimize_energy_jax
     if offset is not None:
         return minimize(heights, substrate, interaction, offset=offset, **kwargs)

@@ -5,11 +5,14 @@ the wall, PR+ directions preconditioned by the Green's function on the free site
 line search of :mod:`.line_search`, steps that cross the wall projected onto
 ``{w >= h - d, mean(w) = 0}`` by :mod:`._projection`'s finite Newton iteration and halved
 until the energy does not rise, else a projected steepest-descent step) for heights given
-as JAX arrays, under displacement control on a periodic substrate. Its constants are
-those of :mod:`.bounded_rules`, :mod:`.smooth_rules` and :mod:`.loop_control`, shared with
-the NumPy loop. Every decision (the face, the line search, the projection's Newton steps,
-the halvings, exact refreshes of ``K w``, the float32 stall guard, convergence) is taken
-on the device; the host reads the result once the loop stops.
+as JAX arrays, under displacement control on a periodic substrate, or under load control
+in the one minimisation (:mod:`._free_mean`'s method: the multiplier ``mu = -N``, the mean
+of ``w`` free, the uniform block on the free sites by :mod:`.adhesive_rules`' rules).
+Its constants are those of :mod:`.bounded_rules`, :mod:`.smooth_rules` and
+:mod:`.loop_control`, shared with the NumPy loop. Every decision (the face, the line
+search, the projection's Newton steps, the halvings, exact refreshes of ``K w``, the
+float32 stall guard, convergence) is taken on the device; the host reads the result once
+the loop stops.
 
 As in :mod:`._smooth_jax`, the law is evaluated on every site and sums run in XLA's
 order, so the iterates agree with the NumPy loop's to rounding; float64 needs

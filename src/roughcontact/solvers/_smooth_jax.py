@@ -5,8 +5,12 @@ preconditioner of Green's function and stiff-site diagonal, the line search of
 :mod:`.line_search` with the bracketing of :mod:`.roots`, exact refreshes of ``K w`` as
 :class:`.loop_control.ReliableUpdates` says, the float32 stall guard and the float64
 floor guard), for heights given as JAX arrays, under displacement control on a periodic
-substrate. Its constants are those of :mod:`.smooth_rules` and :mod:`.loop_control`,
-shared with the NumPy loop. The whole solve is one XLA program: the state is a
+substrate, or under load control with the load inside the one minimisation
+(:mod:`._free_mean`'s method: the gap's uniform mode free, gradient ``K w - p_int + N``,
+the preconditioner's uniform block ``mean(gr)/k_u``, a lost tensile load; its rules
+:mod:`.adhesive_rules`' functions, called on 0-d device arrays). Its constants are those
+of :mod:`.smooth_rules` and :mod:`.loop_control`, shared with the NumPy loop. The whole
+solve is one XLA program: the state is a
 :class:`State` record of device arrays, every decision (the line search's bracket and
 regula falsi steps included) is a ``where`` selection, a ``lax.cond`` or a
 ``lax.while_loop`` on the device, and nothing reaches the host until the loop ends

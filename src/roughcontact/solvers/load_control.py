@@ -1,6 +1,7 @@
 r"""Load control for adhesive laws: find the offset whose equilibrium carries the load.
 
-For the smooth and the bounded solver on NumPy heights, a periodic substrate with a rigid
+For the smooth and the bounded solver on NumPy heights, and their compiled loops on JAX
+heights (:mod:`._adhesive_jax`, the same method and rules), a periodic substrate with a rigid
 mean (and for a law without hard core a load within :data:`ONE_MINIMISATION_LOADS` physical
 pressure scales), the load goes inside the one minimisation (:mod:`._free_mean`: the uniform
 mode of the gap is free and its force is the load not carried; on the wall the multiplier is
