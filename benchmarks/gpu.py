@@ -30,7 +30,9 @@ CPU (NumPy, scipy.fft on all cores) for the GPU/CPU ratio; ``--cpu-path`` also t
 
 ``--backend jax`` times the compiled loops (``--solvers``: the hard wall at ``--load``,
 ``adhesive``: the smoothed 9-3 wall at the offset above, ``bounded``: Maugis-Dugdale with
-the same w and range at the hard wall's ``--end-load`` offset): the heights as a JAX array
+the same w and range at the hard wall's ``--end-load`` offset; ``adhesive_load`` /
+``bounded_load``: the same two laws under load control at ``--load``, cold, the load inside
+the one minimisation in the compiled loop, not in the default list): the heights as a JAX array
 on JAX's default device (``--device cpu``: its CPU), float64 with ``jax_enable_x64``
 switched on by this script; the first solve at each size (XLA compilation, and the
 solve) is reported apart (``first_seconds``), ``it/fft`` is the time per iteration over
@@ -205,7 +207,9 @@ def bench_size_jax(n: int, args, device: str) -> dict:
     row["fft_seconds"] = jax_fft_pair_seconds(n, dev, args.dtype)
     solvers = {"hardwall": (rc.HardWall(), {"load": args.load}),
                "adhesive": (law, {"offset": d_hw + A0}),
-               "bounded": (dugdale, {"offset": d_hw})}  # fmt: skip
+               "bounded": (dugdale, {"offset": d_hw}),
+               "adhesive_load": (law, {"load": args.load}),
+               "bounded_load": (dugdale, {"load": args.load})}  # fmt: skip
     numpy_too = device == "cpu" or n in (args.cpu_sizes or [])
     for name in args.solvers:
         lw, control = solvers[name]
@@ -279,7 +283,8 @@ def bench_path(n: int, args, device: str) -> dict:
 def fmt(row: dict) -> list[str]:
     out = []
     for name in ("hardwall", "hardwall_numpy", "adhesive", "adhesive_numpy", "bounded",
-                 "bounded_numpy"):  # fmt: skip
+                 "bounded_numpy", "adhesive_load", "adhesive_load_numpy", "bounded_load",
+                 "bounded_load_numpy"):  # fmt: skip
         r = row.get(name)
         if r is None:
             continue
@@ -308,9 +313,10 @@ def main(argv=None) -> int:
     ap.add_argument(
         "--solvers",
         nargs="+",
-        choices=["hardwall", "adhesive", "bounded"],
+        choices=["hardwall", "adhesive", "bounded", "adhesive_load", "bounded_load"],
         default=["hardwall", "adhesive", "bounded"],
-        help="--backend jax: the compiled loops to time (bounded: Maugis-Dugdale)",
+        help="--backend jax: the compiled loops to time (bounded: Maugis-Dugdale; *_load: "
+        "under load control at --load)",
     )
     ap.add_argument("--cpu-sizes", type=int, nargs="*", default=[1024, 2048])
     ap.add_argument("--path-size", type=int, default=4096, help="0 skips the path")

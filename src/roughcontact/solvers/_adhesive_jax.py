@@ -14,7 +14,6 @@ import math
 import time
 
 import jax.numpy as jnp
-import numpy as np
 
 from .._validate import ParameterError
 from ._pk_jax import check_jax_inputs
@@ -60,13 +59,16 @@ def minimize_energy_jax(
     refresh_every=REFRESH_EVERY,
     device=None,
     dtype=None,
+    load=None,
 ):
     """:func:`.smooth.minimize_energy` for JAX ``heights`` (length), compiled.
 
     The same parameters, results and units (offset: length; ``tol`` on
-    ``max |K w - p_int| / E*``); periodic substrates only, no ``callback``, ``device``
-    None (place the heights with ``jax.device_put``). Returns a :class:`ContactResult`
-    whose fields are JAX arrays on the heights' device.
+    ``max |K w - p_int| / E*``; ``load``: mean pressure, load control in the one
+    minimisation, :mod:`._free_mean`'s method with :mod:`.adhesive_rules`' rules, in the
+    same compiled loop, ``offset`` then where it starts); periodic substrates only, no
+    ``callback``, ``device`` None (place the heights with ``jax.device_put``). Returns a
+    :class:`ContactResult` whose fields are JAX arrays on the heights' device.
     """
     from . import _smooth_jax as sj
 
@@ -78,17 +80,21 @@ def minimize_energy_jax(
     w = _initial_deflection(initial, substrate, h)
     st, k = sj.prepare(w, substrate, interaction, base=base, tol=tol, max_iter=int(max_iter),
                        restart_every=int(restart_every), refresh_every=int(refresh_every),
-                       warm=initial is not None)  # fmt: skip
+                       warm=initial is not None, load=None if load is None else float(load),
+                       heights=h)  # fmt: skip
     st = sj.run(st, k, law=interaction, rigid=bool(substrate.rigid_mean),
                 stall=dtype == "float32", floor=dtype == "float64")  # fmt: skip
     names = {sj.CONVERGED: "converged", sj.LIMIT: "limit", sj.STALLED: "stalled",
-             sj.FLOOR: "floor", sj.LINE_SEARCH_FAILED: "line_search"}  # fmt: skip
+             sj.FLOOR: "floor", sj.LINE_SEARCH_FAILED: "line_search",
+             sj.DETACHED: "detached"}  # fmt: skip
 
     def resolve(values):  # the loop's outcome, read with the record (one transfer)
-        it, residual, code, best, floor_best, scale = values
+        it, residual, code, best, floor_best, scale, min_gap, *moved = values
         it, code = int(it), int(code)
         status, message = _outcome(names.get(code, "non_finite"), it, best, floor_best, scale,
                                    substrate, tol, physical)  # fmt: skip
+        if code == sj.DETACHED:
+            status, message = SolveStatus.DETACHED, _detached(load, it, min_gap)
         if status is not SolveStatus.RUNAWAY and float(scale) > RUNAWAY_RATIO * float(
             largest_attraction(interaction)
         ):  # pressures far above the law's: judged on the physical scale (as NumPy does)
@@ -96,13 +102,18 @@ def minimize_energy_jax(
                                       float(residual))  # fmt: skip
             if runaway is not None:
                 status, message = SolveStatus.RUNAWAY, runaway
-        return it, residual, status, message
+        return it, residual, status, message, *moved
 
     def physical():  # only for a stop at the floor (a transfer of the heights, then)
-        return physical_pressure_scale(np.asarray(h), substrate, interaction)
+        return physical_pressure_scale(h, substrate, interaction)
 
-    scalars = (st.it, st.residual, st.status, st.best, st.floor_best, jnp.max(jnp.abs(st.p)))
-    p, rep, att, deflection = sj.fields(st, k, interaction)
+    scalars = (st.it, st.residual, st.status, st.best, st.floor_best, jnp.max(jnp.abs(st.p)),
+               jnp.min(st.gap))  # fmt: skip
+    if load is None:
+        p, rep, att, deflection = sj.fields(st, k, interaction)
+    else:  # the offset moved with the gap's mean: read with the record
+        p, rep, att, deflection, offset = sj.moved_fields(st, k, interaction, offset)
+        scalars = (*scalars, offset)
     return make_result(h, substrate, p, deflection, offset, 0, 0.0, None, "", tol,
                        "preconditioned-cg", time.perf_counter() - t_start, repulsive=rep,
                        attractive=att, outcome=(scalars, resolve))  # fmt: skip
@@ -152,11 +163,14 @@ def minimize_energy_bounded_jax(
     restart_every=RESTART_EVERY,
     device=None,
     dtype=None,
+    load=None,
 ):
     """:func:`.bounded.minimize_energy_bounded` for JAX ``heights`` (length), compiled.
 
     The same parameters, results and units (offset: length, at least mean(heights) with a
-    rigid mean; ``tol`` on the largest free-site force imbalance / E*); periodic
+    rigid mean; ``tol`` on the largest free-site force imbalance / E*; ``load``: mean
+    pressure, load control in the one minimisation as the NumPy loop's, the multiplier
+    ``mu = -load`` and the mean of ``w`` free, ``offset`` where it starts); periodic
     substrates only, no ``callback``, ``device`` None. Returns a :class:`ContactResult`
     whose fields are JAX arrays on the heights' device (``pressure``: the traction).
     """
@@ -175,30 +189,49 @@ def minimize_energy_bounded_jax(
         compliance = compliance_operator(substrate, work_grid=True)
         w = jnp.reshape(warm_deflection(initial, substrate, h, compliance), h.shape)
     st, k = bj.prepare(w, substrate, base=base, wall_tol=ON_WALL * scale, tol=tol,
-                       max_iter=int(max_iter), restart_every=int(restart_every))  # fmt: skip
+                       max_iter=int(max_iter), restart_every=int(restart_every),
+                       load=None if load is None else float(load), heights=h,
+                       law=interaction)  # fmt: skip
     st = bj.run(st, k, law=interaction, rigid=bool(substrate.rigid_mean), stall=dtype == "float32")
     names = {bj.CONVERGED: "converged", bj.LIMIT: "limit", bj.STALLED: "stalled",
              bj.LINE_SEARCH_FAILED: "line_search", bj.NO_DESCENT: "no_descent"}  # fmt: skip
 
     def resolve(values):  # the loop's outcome, read with the record (one transfer)
-        it, residual, code, best = values
+        it, residual, code, best, min_gap, *moved = values
         it, code = int(it), int(code)
         status, message = _outcome(names.get(code, "non_finite"), it, best, 0.0, 0.0, substrate,
                                    tol)  # fmt: skip
-        return it, residual, status, message
+        if code == bj.DETACHED:
+            status, message = SolveStatus.DETACHED, _detached(load, it, min_gap)
+        return it, residual, status, message, *moved
 
-    traction, rep, att, deflection = bj.fields(st, k, interaction)
+    scalars = (st.it, st.residual, st.status, st.best, jnp.min(k.base + st.w))
+    if load is None:
+        traction, rep, att, deflection = bj.fields(st, k, interaction)
+    else:  # the offset moved with the mean of w: read with the record
+        traction, rep, att, deflection, offset = bj.moved_fields(st, k, interaction, offset)
+        scalars = (*scalars, offset)
     return make_result(h, substrate, traction, deflection, offset, 0, 0.0, None, "", tol,
                        "bounded-cg", time.perf_counter() - t_start, repulsive=rep,
-                       attractive=att,
-                       outcome=((st.it, st.residual, st.status, st.best), resolve))  # fmt: skip
+                       attractive=att, outcome=(scalars, resolve))  # fmt: skip
+
+
+def _detached(load, it, min_gap):
+    """A lost tensile load's message, :meth:`._free_mean.FreeMean._lost`'s words."""
+    return (
+        f"no state carries load {float(load):g}: at iteration {it} the surfaces separate "
+        f"(smallest gap {float(min_gap):.3g}, beyond the attraction's peak, where no site "
+        "pulls that hard): beyond the pull-off force"
+    )
 
 
 def solve_jax(heights, substrate, interaction, *, load, offset, **kwargs):
     """:func:`.solve.solve` for an adhesive law on JAX heights: the compiled loop of the
-    law's kind (smooth or hard-core) at an offset, or under load control the offset search
-    of :func:`.load_control.solve_at_load` around compiled solves (each warm-started on
-    the device from the nearest state)."""
+    law's kind (smooth or hard-core) at an offset, or under load control
+    :func:`.load_control.solve_at_load` with that loop as its minimiser: the load inside
+    the compiled loop's one minimisation (``takes_load``), and where the NumPy loop falls
+    back to the offset search around nested solves, that search around compiled solves
+    (each warm-started on the device from the nearest state)."""
     minimize = minimize_energy_bounded_jax if interaction.hard_core else minimize_energy_jax
     if offset is not None:
         return minimize(heights, substrate, interaction, offset=offset, **kwargs)
@@ -210,3 +243,9 @@ def solve_jax(heights, substrate, interaction, *, load, offset, **kwargs):
         heights, substrate, kwargs["dtype"], kwargs["device"], kwargs["callback"]
     )
     return solve_at_load(minimize, heights, substrate, interaction, load=load, **kwargs)
+
+
+#: :func:`.load_control.solve_at_load` passes the load to this minimiser (its one
+#: minimisation, in the compiled loop) where it does to the NumPy ones.
+minimize_energy_jax.takes_load = True
+minimize_energy_bounded_jax.takes_load = True

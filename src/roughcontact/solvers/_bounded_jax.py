@@ -5,11 +5,14 @@ the wall, PR+ directions preconditioned by the Green's function on the free site
 line search of :mod:`.line_search`, steps that cross the wall projected onto
 ``{w >= h - d, mean(w) = 0}`` by :mod:`._projection`'s finite Newton iteration and halved
 until the energy does not rise, else a projected steepest-descent step) for heights given
-as JAX arrays, under displacement control on a periodic substrate. Its constants are
-those of :mod:`.bounded_rules`, :mod:`.smooth_rules` and :mod:`.loop_control`, shared with
-the NumPy loop. Every decision (the face, the line search, the projection's Newton steps,
-the halvings, exact refreshes of ``K w``, the float32 stall guard, convergence) is taken
-on the device; the host reads the result once the loop stops.
+as JAX arrays, under displacement control on a periodic substrate, or under load control
+in the one minimisation (:mod:`._free_mean`'s method: the multiplier ``mu = -N``, the mean
+of ``w`` free, the uniform block on the free sites by :mod:`.adhesive_rules`' rules).
+Its constants are those of :mod:`.bounded_rules`, :mod:`.smooth_rules` and
+:mod:`.loop_control`, shared with the NumPy loop. Every decision (the face, the line
+search, the projection's Newton steps, the halvings, exact refreshes of ``K w``, the
+float32 stall guard, convergence) is taken on the device; the host reads the result once
+the loop stops.
 
 As in :mod:`._smooth_jax`, the law is evaluated on every site and sums run in XLA's
 order, so the iterates agree with the NumPy loop's to rounding; float64 needs
@@ -25,6 +28,7 @@ import jax
 import jax.numpy as jnp
 from jax import lax
 
+from . import adhesive_rules as rules
 from ._smooth_jax import _conv, _dot, accumulation_dtype, line_minimum
 from .bounded_rules import (
     BOUNDED_LINE_SEARCH_RTOL,
@@ -40,6 +44,7 @@ __all__ = ["Constants", "State", "prepare", "project", "run"]
 _STIFFNESS, _COMPLIANCE = 0, 1  # the fields of FourierMultipliers
 #: The status codes the loop leaves in ``State.status``.
 RUNNING, CONVERGED, LIMIT, STALLED, NON_FINITE, LINE_SEARCH_FAILED, NO_DESCENT = range(7)
+DETACHED = 7  # a tensile load lost (load control)
 
 
 class Constants(NamedTuple):
@@ -54,6 +59,13 @@ class Constants(NamedTuple):
     tol: object
     max_iter: object  # (int32)
     restart_every: object  # (int32)
+    # load control in the one minimisation (:mod:`._free_mean`: mu = -load, the mean of w
+    # free, a uniform block on the free sites; None: offset control)
+    load: object = None  # the mean pressure to carry
+    reach: object = None  # the uniform shift's bound, max(std(h), a0) (length)
+    size: object = None  # the substrate's longer side (length)
+    self_stiffness: object = None  # K_ii (pressure/length)
+    peak: object = None  # the gap of the law's largest tension (a tensile load)
 
 
 class State(NamedTuple):
@@ -108,8 +120,11 @@ def project(v, lower, rigid, acc):
     return c[3]
 
 
-def prepare(w, substrate, *, base, wall_tol, tol, max_iter, restart_every):
-    """The initial state (``w`` projected onto the feasible set) and the :class:`Constants`."""
+def prepare(w, substrate, *, base, wall_tol, tol, max_iter, restart_every, load=None,
+            heights=None, law=None):  # fmt: skip
+    """The initial state (``w`` projected onto the feasible set) and the :class:`Constants`;
+    ``load`` (mean pressure, with ``heights`` and ``law``): load control in the one
+    minimisation (:mod:`._free_mean`, its rules from :mod:`.adhesive_rules`)."""
     acc = accumulation_dtype()
     dev = base.device
     multipliers = substrate.multipliers(base)
@@ -125,13 +140,22 @@ def prepare(w, substrate, *, base, wall_tol, tol, max_iter, restart_every):
         wall_tol=scalar(wall_tol, base.dtype), tol=scalar(tol), max_iter=scalar(max_iter, i32),
         restart_every=scalar(restart_every, i32),
     )  # fmt: skip
+    if load is not None:  # the free mode's scalars, on the device (no transfer)
+        peak = rules.attraction_peak_gap(law) if load < 0 else 0.0
+        reach = jnp.maximum(jnp.std(heights.astype(acc)), substrate.pixel_size)
+        k = k._replace(
+            load=scalar(load), reach=reach,
+            size=scalar(max(substrate.shape) * substrate.pixel_size),
+            self_stiffness=scalar(substrate.self_stiffness), peak=scalar(peak),
+        )  # fmt: skip
     return _initial(w, k, bool(substrate.rigid_mean)), k
 
 
 @partial(jax.jit, static_argnames=("rigid",))
 def _initial(w, k, rigid):
     acc = k.tol.dtype
-    w = project(w - jnp.mean(w) if rigid else w, -k.base, rigid, acc)
+    pin = rigid and k.load is None  # the rigid mean as a constraint (not under load)
+    w = project(w - jnp.mean(w) if rigid else w, -k.base, pin, acc)
     inf, zero_i = jnp.asarray(jnp.inf, acc), jnp.asarray(0, jnp.int32)
     false = jnp.asarray(False)
     zeros = jnp.zeros_like(w)
@@ -155,6 +179,11 @@ def run(st, k, *, law, rigid, stall):
     f32 = jnp.float32
     lower = -k.base
     rtol = BOUNDED_LINE_SEARCH_RTOL
+    free_mode = k.load is not None  # load control in the one minimisation
+    pin = rigid and not free_mode  # the rigid mean as a constraint
+
+    def elastic(s, kw):  # s.(K w + N): the load's work enters the slope (free mode)
+        return dot(s, kw) + (k.load * tot(s) if free_mode else 0.0)
 
     def tot(x):
         return jnp.sum(x, dtype=acc)
@@ -173,17 +202,18 @@ def run(st, k, *, law, rigid, stall):
         gap = k.base + w
         r = kw - law.pressure(gap)
         on_wall = gap <= k.wall_tol
-        mu = jnp.zeros((), acc)
-        if rigid:
+        mu = -k.load if free_mode else jnp.zeros((), acc)
+        if pin:
             mu = masked_mean(r, ~on_wall, tot(r) / r.size)
         active = on_wall & (r - mu.astype(dt) > 0)
         free = ~active
-        if rigid:
+        if pin:
             mu = masked_mean(r, free, mu)
         return gap, mu, active, free, jnp.where(free, r - mu.astype(dt), 0.0)
 
     def energy(w, kw):
-        return 0.5 * dot(w, kw) + tot(law.energy(k.base + w))
+        e = 0.5 * dot(w, kw) + tot(law.energy(k.base + w))
+        return e + k.load * tot(w) if free_mode else e
 
     def exact_k(w):
         return _conv(w, k.stiff)
@@ -197,7 +227,7 @@ def run(st, k, *, law, rigid, stall):
 
         def body(c):
             alpha, _, _, _, j = c
-            w_try = project(w + alpha.astype(dt) * s, lower, rigid, acc)
+            w_try = project(w + alpha.astype(dt) * s, lower, pin, acc)
             kw_try = exact_k(w_try)
             e_try = energy(w_try, kw_try)
             found = e_try < e_cur if strict else e_try <= e_cur
@@ -215,7 +245,7 @@ def run(st, k, *, law, rigid, stall):
         def gradient():  # the projected steepest-descent step (Bertsekas 1976)
             s_g = -rr
             ks_g = exact_k(s_g)
-            a, _ = line_minimum(law, gap, s_g, dot(s_g, st.kw), dot(s_g, ks_g), -dot(rr, rr),
+            a, _ = line_minimum(law, gap, s_g, elastic(s_g, st.kw), dot(s_g, ks_g), -dot(rr, rr),
                                 acc, rtol)  # fmt: skip
             a = jnp.where(jnp.isfinite(a) & (a > 0), a, 1.0)
             return halve(st.w, s_g, a, e_cur, GRADIENT_HALVINGS, True)
@@ -231,6 +261,15 @@ def run(st, k, *, law, rigid, stall):
         z = jnp.where(free, single(rr, k.green32), 0.0)
         if rigid:
             z = jnp.where(free, z - masked_mean(z, free, 0.0).astype(dt), 0.0)
+        lost = jnp.asarray(False)
+        if free_mode:  # the uniform block on the free sites (FreeMean.add_on)
+            n_free = tot(free)
+            k_u = rules.wall_uniform_stiffness(1.0 - n_free / free.size, k.self_stiffness,
+                                               k.modulus, k.size, xp=jnp)  # fmt: skip
+            mean = tot(rr) / jnp.maximum(n_free, 1.0)  # rr is 0 off the free sites
+            shift = rules.uniform_shift(mean, k_u, k.reach, xp=jnp)
+            z = jnp.where(free, z + shift.astype(dt), 0.0)
+            lost = rules.tension_lost(law, k.load, jnp.min(gap).astype(acc), k.peak, xp=jnp)
         restart = ~st.directions | (it % k.restart_every == 0) | ~st.has_old
         gz = dot(rr, z)
         restart = restart | jnp.any(active != st.active_old) | (st.gz_old == 0)
@@ -243,13 +282,16 @@ def run(st, k, *, law, rigid, stall):
         st = st._replace(s=s, z_old=z, gz_old=gz, active_old=active, has_old=jnp.asarray(True),
                          directions=jnp.asarray(True))  # fmt: skip
         ks = single(s, k.stiff32)
-        alpha, _ = line_minimum(law, gap, s, dot(s, st.kw), dot(s, ks), slope0, acc, rtol)
+        alpha, _ = line_minimum(law, gap, s, elastic(s, st.kw), dot(s, ks), slope0, acc, rtol)
         crossing = s < 0
         alpha_max = jnp.min(jnp.where(crossing, -gap / jnp.where(crossing, s, -1.0), jnp.inf))
         feasible = alpha <= alpha_max.astype(acc)
         moved = st._replace(w=st.w + alpha.astype(dt) * s, kw=st.kw + alpha.astype(dt) * ks,
                             exact=jnp.asarray(False))  # fmt: skip
         failed = st._replace(status=jnp.int32(LINE_SEARCH_FAILED))
+        if free_mode:  # a lost tensile load stops before the step, as the NumPy loop does
+            code = jnp.where(lost, DETACHED, LINE_SEARCH_FAILED).astype(jnp.int32)
+            failed, alpha = failed._replace(status=code), jnp.where(lost, jnp.nan, alpha)
         return lax.cond(
             ~jnp.isfinite(alpha),
             lambda: failed,
@@ -303,3 +345,12 @@ def fields(st, k, law):
     p = law.pressure(k.base + st.w)
     traction = jnp.where(st.free, p, st.kw - st.mu.astype(st.kw.dtype))
     return traction, traction > 0, traction < 0, st.w
+
+
+@partial(jax.jit, static_argnames=("law",))
+def moved_fields(st, k, law, offset):
+    """:func:`fields` after load control in the one minimisation: the offset moved with
+    the mean of ``w`` (as :func:`.bounded.minimize_energy_bounded`), ``w`` mean-free."""
+    traction, rep, att, w = fields(st, k, law)
+    moved = jnp.mean(w.astype(k.tol.dtype))
+    return traction, rep, att, w - moved.astype(w.dtype), offset + moved

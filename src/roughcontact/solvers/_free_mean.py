@@ -23,6 +23,10 @@ offset-controlled cold solve ending in the same state at ℓa 0.05 (128², 256²
 (about one rms height) while the contacts form one after another, where the offset-
 controlled solve starts at its offset. A warm path step costs 1.0-1.4x an offset step.
 The nested root search it replaces took 10-30x.
+
+The compiled loops (:mod:`._smooth_jax`, :mod:`._bounded_jax`) take the same method with
+the same rules (:mod:`.adhesive_rules`' scalar functions on 0-d device arrays) inside their
+``lax.while_loop``: the same iterations on JAX heights.
 """
 
 from __future__ import annotations

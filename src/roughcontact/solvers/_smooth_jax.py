@@ -5,8 +5,12 @@ preconditioner of Green's function and stiff-site diagonal, the line search of
 :mod:`.line_search` with the bracketing of :mod:`.roots`, exact refreshes of ``K w`` as
 :class:`.loop_control.ReliableUpdates` says, the float32 stall guard and the float64
 floor guard), for heights given as JAX arrays, under displacement control on a periodic
-substrate. Its constants are those of :mod:`.smooth_rules` and :mod:`.loop_control`,
-shared with the NumPy loop. The whole solve is one XLA program: the state is a
+substrate, or under load control with the load inside the one minimisation
+(:mod:`._free_mean`'s method: the gap's uniform mode free, gradient ``K w - p_int + N``,
+the preconditioner's uniform block ``mean(gr)/k_u``, a lost tensile load; its rules
+:mod:`.adhesive_rules`' functions, called on 0-d device arrays). Its constants are those
+of :mod:`.smooth_rules` and :mod:`.loop_control`, shared with the NumPy loop. The whole
+solve is one XLA program: the state is a
 :class:`State` record of device arrays, every decision (the line search's bracket and
 regula falsi steps included) is a ``where`` selection, a ``lax.cond`` or a
 ``lax.while_loop`` on the device, and nothing reaches the host until the loop ends
@@ -33,6 +37,7 @@ import jax
 import jax.numpy as jnp
 from jax import lax
 
+from . import adhesive_rules as rules
 from .loop_control import RELIABLE_DROP, RELIABLE_EVERY, STALL_IMPROVEMENT, STALL_PATIENCE
 from .smooth_rules import (
     EPS64,
@@ -49,7 +54,7 @@ __all__ = ["Constants", "State", "line_minimum", "prepare", "run"]
 
 _STIFFNESS, _COMPLIANCE = 0, 1  # the fields of FourierMultipliers
 #: The status codes the loop leaves in ``State.status``.
-RUNNING, CONVERGED, LIMIT, STALLED, FLOOR, NON_FINITE, LINE_SEARCH_FAILED = range(7)
+RUNNING, CONVERGED, LIMIT, STALLED, FLOOR, NON_FINITE, LINE_SEARCH_FAILED, DETACHED = range(8)
 
 
 class Constants(NamedTuple):
@@ -67,6 +72,11 @@ class Constants(NamedTuple):
     restart_every: object  # (int32)
     refresh_every: object  # (int32)
     refresh_at_once: object  # a warm start refreshes the stiff sites at once (bool)
+    # load control in the one minimisation (:mod:`._free_mean`; None: offset control)
+    load: object = None  # the mean pressure to carry
+    reach: object = None  # the uniform shift's bound, max(std(h), a0) (length)
+    size: object = None  # the substrate's longer side (length; k_u's elastic floor)
+    peak: object = None  # the gap of the law's largest tension (a tensile load)
 
 
 class State(NamedTuple):
@@ -96,6 +106,7 @@ class State(NamedTuple):
     floor_best: object  # ... the best residual and ...
     floor_since: object  # ... the iterations since the reference (int32)
     status: object  # RUNNING or why the loop stopped (int32)
+    k_u: object = None  # the uniform mode's stiffness (load control; None: offset control)
 
 
 def _conv(x, kernel):
@@ -108,11 +119,13 @@ def accumulation_dtype():
 
 
 def prepare(w, substrate, interaction, *, base, tol, max_iter, restart_every, refresh_every,
-            warm):  # fmt: skip
+            warm, load=None, heights=None):  # fmt: skip
     """The initial state and the :class:`Constants` on the heights' device.
 
     ``w``: the initial deflection (2D JAX array, mean-free with a rigid mean); ``base``
-    ``offset - heights`` (2D); ``warm``: whether ``w`` is a warm start.
+    ``offset - heights`` (2D); ``warm``: whether ``w`` is a warm start; ``load`` (mean
+    pressure, with ``heights``): load control in the one minimisation, the gap's uniform
+    mode free (:mod:`._free_mean`, its rules from :mod:`.adhesive_rules`).
     """
     acc = accumulation_dtype()
     dev = base.device
@@ -130,7 +143,14 @@ def prepare(w, substrate, interaction, *, base, tol, max_iter, restart_every, re
         max_iter=scalar(max_iter, i32), restart_every=scalar(restart_every, i32),
         refresh_every=scalar(refresh_every, i32), refresh_at_once=scalar(warm, bool),
     )  # fmt: skip
+    if load is not None:  # the free mode's scalars, on the device (no transfer)
+        reach = jnp.maximum(jnp.std(heights.astype(acc)), substrate.pixel_size)
+        peak = rules.attraction_peak_gap(interaction) if load < 0 else 0.0
+        k = k._replace(load=scalar(load), reach=reach, size=scalar(
+            max(substrate.shape) * substrate.pixel_size), peak=scalar(peak))  # fmt: skip
     st = _initial(w, k, interaction, bool(substrate.rigid_mean))
+    if load is not None:
+        st = st._replace(k_u=scalar(1.0))  # set at the first iteration
     return st, k
 
 
@@ -144,7 +164,7 @@ def _initial(w, k, law, rigid):
     false, true = jnp.asarray(False), jnp.asarray(True)
     zeros = jnp.zeros_like(gap)
     return State(
-        gap=gap, kw=kw, gr=_imbalance(kw, p, rigid), p=p, s=zeros, ks=zeros, z_old=zeros,
+        gap=gap, kw=kw, gr=_imbalance(kw, p, rigid, k.load), p=p, s=zeros, ks=zeros, z_old=zeros,
         gz_old=jnp.asarray(1.0, acc), stiff=jnp.zeros(gap.shape, bool), diagonal=zeros,
         has_stiff=false, directions=false, exact=true, it=zero_i, residual=inf,
         reliable=inf, since=zero_i, iterated=inf, best=inf, since_best=zero_i,
@@ -152,8 +172,12 @@ def _initial(w, k, law, rigid):
     )  # fmt: skip
 
 
-def _imbalance(kw, p, rigid):
-    """K w - p_int, without its mean when the uniform mode is rigid (its force is the load)."""
+def _imbalance(kw, p, rigid, load=None):
+    """K w - p_int, without its mean when the uniform mode is rigid (its force is the load);
+    under load control in the one minimisation (``load``, mean pressure) ``K w - p_int + N``
+    (the enthalpy's gradient: its mean is the load not carried)."""
+    if load is not None:
+        return kw + load.astype(kw.dtype) - p
     if not rigid:
         return kw - p
     acc = accumulation_dtype()
@@ -233,6 +257,7 @@ def run(st, k, *, law, rigid, stall, floor):
     """
     dt, acc = st.gap.dtype, st.gz_old.dtype
     f32 = jnp.float32
+    free = k.load is not None  # load control in the one minimisation (a static structure)
     n = st.gap.size
 
     def tot(x):
@@ -241,15 +266,15 @@ def run(st, k, *, law, rigid, stall, floor):
     def dot(a, b):
         return _dot(a, b, acc)
 
-    def precondition(st):
-        """``z`` (the block-preconditioned gradient) and ``K z`` (see :mod:`._block`)."""
+    def precondition(st, gr):
+        """``z`` (the block-preconditioned ``gr``) and ``K z`` (see :mod:`._block`)."""
 
         def green_only():  # K K^-1 is the identity on the non-uniform modes
-            return _conv(st.gr, k.green), st.gr
+            return _conv(gr, k.green), gr
 
         def block():
-            soft_block = _conv(jnp.where(st.stiff, 0.0, st.gr.astype(f32)), k.green32)
-            z_stiff = st.gr * st.diagonal  # zero off the stiff sites
+            soft_block = _conv(jnp.where(st.stiff, 0.0, gr.astype(f32)), k.green32)
+            z_stiff = gr * st.diagonal  # zero off the stiff sites
             shift = jnp.zeros((), acc)
             if rigid:  # the mean of z
                 stiff_block = tot(jnp.where(st.stiff, soft_block, 0.0))
@@ -273,7 +298,13 @@ def run(st, k, *, law, rigid, stall, floor):
         restart = ~st.directions | (it % k.restart_every == 0)
         refresh = (it % k.refresh_every == 0) | ((it == 1) & k.refresh_at_once)
         st = lax.cond(refresh, stiff_sites, lambda st: st, st)
-        z, kz = precondition(st)
+        if free:  # the block on the mean-free part, the uniform block (:mod:`._free_mean`)
+            mean = tot(st.gr) / n
+            z, kz = precondition(st, st.gr - mean.astype(dt))
+            st, lost = uniform_block(st, it)
+            z = z + rules.uniform_shift(mean, st.k_u, k.reach, xp=jnp).astype(dt)
+        else:
+            z, kz = precondition(st, st.gr)
         gz = dot(st.gr, z)
         restart = restart | (st.gz_old == 0)
         pr = (gz - dot(st.gr, st.z_old)) / jnp.where(st.gz_old == 0, 1.0, st.gz_old)
@@ -290,13 +321,29 @@ def run(st, k, *, law, rigid, stall, floor):
             gap=st.gap + alpha.astype(dt) * s, kw=st.kw + alpha.astype(dt) * ks, p=p, s=s,
             ks=ks, z_old=z, gz_old=gz, directions=jnp.asarray(True), exact=jnp.asarray(False),
         )  # fmt: skip
-        moved = moved._replace(gr=_imbalance(moved.kw, p, rigid))
+        moved = moved._replace(gr=_imbalance(moved.kw, p, rigid, k.load))
         failed = st._replace(status=jnp.int32(LINE_SEARCH_FAILED))
+        if free:  # a lost tensile load stops before the step, as the NumPy loop does
+            code = jnp.where(lost, DETACHED, LINE_SEARCH_FAILED).astype(jnp.int32)
+            failed = failed._replace(status=code)
+            return lax.cond(jnp.isfinite(alpha) & ~lost, lambda: moved, lambda: failed)
         return lax.cond(jnp.isfinite(alpha), lambda: moved, lambda: failed)
+
+    def uniform_block(st, it):
+        """``k_u`` refreshed (at iteration 1 and every ``refresh_every``-th + 1, as
+        :class:`._free_mean.FreeMean`) by :func:`.adhesive_rules.uniform_stiffness`; and
+        whether a tensile load is lost (:func:`.adhesive_rules.tension_lost`)."""
+        due = (it == 1) | (it % k.refresh_every == 1)
+        curvature = lambda: tot(jnp.maximum(law.curvature(st.gap), 0.0)) / n  # noqa: E731
+        mean_curv = lax.cond(due, curvature, lambda: jnp.zeros((), acc))
+        k_u = rules.uniform_stiffness(mean_curv, k.modulus, k.size, xp=jnp)
+        st = st._replace(k_u=jnp.where(due, k_u, st.k_u))
+        lost = rules.tension_lost(law, k.load, jnp.min(st.gap).astype(acc), k.peak, xp=jnp)
+        return st, lost
 
     def exact_refresh(st, residual):
         kw = _conv(st.gap - k.base, k.stiff)
-        return st._replace(kw=kw, gr=_imbalance(kw, st.p, rigid), exact=jnp.asarray(True),
+        return st._replace(kw=kw, gr=_imbalance(kw, st.p, rigid, k.load), exact=jnp.asarray(True),
                            iterated=residual)  # fmt: skip
 
     def proceed(st, residual):
@@ -353,3 +400,12 @@ def fields(st, k, law):
     """The interaction pressure, the repulsive and attractive masks and the deflection."""
     rep, att = law.classify(st.gap)
     return law.pressure(st.gap), rep, att, st.gap - k.base
+
+
+@partial(jax.jit, static_argnames=("law",))
+def moved_fields(st, k, law, offset):
+    """:func:`fields` after load control in the one minimisation: the offset moved with
+    the gap's mean (:meth:`._free_mean.FreeMean.moved`), the deflection mean-free."""
+    shift = jnp.mean((st.gap - k.base).astype(k.tol.dtype))
+    p, rep, att, deflection = fields(st, k, law)
+    return p, rep, att, deflection - shift.astype(deflection.dtype), offset + shift

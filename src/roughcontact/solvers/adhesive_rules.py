@@ -52,6 +52,8 @@ import math
 
 import numpy as np
 
+from .._backend import array_namespace, is_numpy_array, to_numpy
+
 __all__ = [
     "FLOOR_ULPS",
     "EPS64",
@@ -85,8 +87,14 @@ FULL_CONTACT_MARGIN = 10.0
 
 def rms_slope(heights, pixel_size: float, periodic: bool = True) -> float:
     """Root-mean-square slope of 2-D ``heights`` (dimensionless; forward differences,
-    periodic wrap when ``periodic``); a NumPy computation on the host."""
-    h = np.asarray(heights, dtype=float)
+    periodic wrap when ``periodic``); a NumPy computation on the host, or for periodic
+    device heights (JAX, CuPy) on their device, one scalar read (not the grid)."""
+    xp = None if is_numpy_array(heights) else array_namespace(heights)
+    if periodic and xp is not None and hasattr(xp, "roll"):
+        h = heights
+        dx, dy = xp.roll(h, -1, axis=0) - h, xp.roll(h, -1, axis=1) - h
+        return float(xp.sqrt(xp.mean(dx * dx) + xp.mean(dy * dy))) / float(pixel_size)
+    h = np.asarray(to_numpy(heights), dtype=float)
     if periodic:
         dx, dy = np.roll(h, -1, 0) - h, np.roll(h, -1, 1) - h
         squares = np.mean(dx * dx) + np.mean(dy * dy)
@@ -139,11 +147,16 @@ def attraction_peak_gap(law) -> float:
     return float(gaps[int(np.argmin(p))]) if p.min() < 0 else 0.0
 
 
-def tension_lost(law, load, min_gap, peak_gap) -> bool:
+def tension_lost(law, load, min_gap, peak_gap, xp=None) -> bool:
     """Whether a tensile ``load`` (< 0, pressure) can no longer be carried as the surfaces
     separate: every gap beyond the law's range, or beyond its attraction's peak
     (``peak_gap``) with less tension at the smallest gap ``min_gap`` than ``-load`` (no
-    site can then pull harder, and separating further pulls less)."""
+    site can then pull harder, and separating further pulls less). With ``xp`` (a compiled
+    loop's namespace) the same rule on 0-d arrays, a boolean 0-d array."""
+    if xp is not None:
+        tension = -law.pressure(xp.reshape(min_gap, (1,)))[0]
+        beyond = (min_gap >= law.cutoff) | ((min_gap > peak_gap) & (tension < -load))
+        return (load < 0) & beyond
     if load >= 0:
         return False
     if min_gap >= law.cutoff:

@@ -1,6 +1,7 @@
 r"""Load control for adhesive laws: find the offset whose equilibrium carries the load.
 
-For the smooth and the bounded solver on NumPy heights, a periodic substrate with a rigid
+For the smooth and the bounded solver on NumPy heights, and their compiled loops on JAX
+heights (:mod:`._adhesive_jax`, the same method and rules), a periodic substrate with a rigid
 mean (and for a law without hard core a load within :data:`ONE_MINIMISATION_LOADS` physical
 pressure scales), the load goes inside the one minimisation (:mod:`._free_mean`: the uniform
 mode of the gap is free and its force is the load not carried; on the wall the multiplier is
@@ -41,7 +42,7 @@ import dataclasses
 import math
 import time
 
-from .._backend import dtype_name, is_numpy_array, to_numpy
+from .._backend import dtype_name, is_numpy_array
 from .adhesive_rules import carrying, lowest_smooth_offset, physical_pressure_scale
 from .inputs import check_problem, checked_heights, height_statistics
 from .result import SolveStatus
@@ -59,13 +60,15 @@ ONE_MINIMISATION_LOADS = 100.0
 
 def _one_minimisation(minimize, heights, substrate) -> bool:
     """Whether ``minimize`` takes the load itself (:mod:`._free_mean`): the smooth or the
-    bounded solver on NumPy heights, a periodic substrate with a rigid mean."""
+    bounded solver on NumPy heights, or a compiled loop that says so (``takes_load``:
+    :mod:`._adhesive_jax`), on a periodic substrate with a rigid mean."""
     from .bounded import minimize_energy_bounded
     from .smooth import minimize_energy
 
     periodic = tuple(substrate.work_shape) == tuple(substrate.shape)
-    return (minimize in (minimize_energy, minimize_energy_bounded) and is_numpy_array(heights)
-            and periodic and substrate.rigid_mean)  # fmt: skip
+    numpy = minimize in (minimize_energy, minimize_energy_bounded) and is_numpy_array(heights)
+    return ((numpy or getattr(minimize, "takes_load", False)) and periodic
+            and substrate.rigid_mean)  # fmt: skip
 
 
 def solve_at_load(
@@ -139,7 +142,7 @@ def solve_at_load(
     if _one_minimisation(minimize, h, substrate) and (
         interaction.hard_core  # full contact on the wall carries any load: no runaway
         or abs(load) <= ONE_MINIMISATION_LOADS
-        * physical_pressure_scale(to_numpy(h), substrate, interaction)
+        * physical_pressure_scale(h, substrate, interaction)
     ):
         # the load inside the one minimisation (:mod:`._free_mean`): the cost of an
         # offset-controlled solve; the nested search below only where it fails
@@ -190,7 +193,7 @@ def solve_at_load(
     if interaction.hard_core and substrate.rigid_mean:
         lowest = stats["mean"]
     elif substrate.rigid_mean:  # no lower than full contact at the load (adhesive_rules)
-        pressure_scale = physical_pressure_scale(to_numpy(h), substrate, interaction)
+        pressure_scale = physical_pressure_scale(h, substrate, interaction)
         lowest = lowest_smooth_offset(interaction, stats["mean"], load, pressure_scale)
     for _ in range(60):
         keep_only(d_a)

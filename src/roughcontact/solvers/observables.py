@@ -32,8 +32,9 @@ def make_result(
 
     ``status`` (a :class:`SolveStatus`) gives ``converged``. ``outcome``: ``(scalars,
     resolve)``, a loop's device scalars read in the record's one transfer and
-    ``resolve(values) -> (iterations, residual, status, message)`` of their values, which
-    replace the positional ones (a compiled loop whose outcome is read with its record).
+    ``resolve(values) -> (iterations, residual, status, message[, offset])`` of their
+    values, which replace the positional ones (a compiled loop whose outcome is read with
+    its record; ``offset`` a device scalar before, e.g. moved by load control).
 
     The fields stay on the heights' backend and device (no copy to the host: a path on a
     GPU warm-starts each step from the last one there); the scalars are reduced there
@@ -60,7 +61,8 @@ def make_result(
         *(() if outcome is None else outcome[0]),
     ])  # fmt: skip
     if outcome is not None:
-        iterations, residual, status, message = outcome[1](sums[7:])
+        iterations, residual, status, message, *moved = outcome[1](sums[7:])
+        offset = moved[0] if moved else offset
     p_rep, p_att, p_all, gap_sum, n_rep, n_att, edges = sums[:7]
     edges = int(edges)
     a0 = substrate.pixel_size
