@@ -180,7 +180,7 @@ def test_a_rerun_into_its_own_directory_works_and_force_writes_beside_foreign_fi
     for _ in range(2):  # the second run finds only its own files
         r = CliRunner().invoke(main, [*base, "-o", str(rep)])
         assert r.exit_code == 0, r.output
-    recorded = set(_guard._read_manifest(rep))
+    recorded = set(_guard._read_manifest(rep)[0])
     written = {p.name for p in rep.iterdir()} - {_guard.MANIFEST_NAME}
     assert recorded == written and "result.json" in written
     (rep / "notes.txt").write_text("mine")
@@ -188,8 +188,13 @@ def test_a_rerun_into_its_own_directory_works_and_force_writes_beside_foreign_fi
     r = CliRunner().invoke(main, [*base, "-o", str(rep), "--force"])
     assert r.exit_code == 0, r.output
     assert (rep / "notes.txt").read_text() == "mine"
-    assert "notes.txt" not in _guard._read_manifest(rep)  # still not ours: refused again
-    _one_line(CliRunner().invoke(main, [*base, "-o", str(rep)]), "notes.txt")
+    files, accepted = _guard._read_manifest(rep)
+    assert "notes.txt" not in files and accepted == ["notes.txt"]  # kept, by the user's word
+    r = CliRunner().invoke(main, [*base, "-o", str(rep)])  # so the same rerun needs no --force
+    assert r.exit_code == 0, r.output
+    assert (rep / "notes.txt").read_text() == "mine"
+    (rep / "later.txt").write_text("new")  # a file that appeared since: foreign again
+    _one_line(CliRunner().invoke(main, [*base, "-o", str(rep)]), "later.txt", "--force")
 
 
 def test_the_manifest_records_any_file_the_writer_puts_below_a_claimed_directory(tmp_path):
@@ -199,7 +204,7 @@ def test_the_manifest_records_any_file_the_writer_puts_below_a_claimed_directory
         _io.write_bytes_atomic(_io.output_directory(out / "figures") / "a.png", b"png")
         _io.write_bytes_atomic(out / "report.html", b"<html>")  # any name, any writer call
         _io.write_bytes_atomic(tmp_path / "outside.txt", b"x")  # not below: not recorded
-    assert sorted(_guard._read_manifest(out)) == ["figures/a.png", "report.html"]
+    assert _guard._read_manifest(out) == (["figures/a.png", "report.html"], [])
     with _guard.command_scope():
         assert _io.claim_directory(out) == out  # only its own files: accepted
     (out / "figures" / "user.png").write_bytes(b"mine")
@@ -209,5 +214,5 @@ def test_the_manifest_records_any_file_the_writer_puts_below_a_claimed_directory
     assert "figures/user.png" in str(err.value) and "link" in str(err.value)
     with _guard.command_scope():  # nothing claimed: nothing recorded
         _io.write_bytes_atomic(out / "later.txt", b"x")
-    assert "later.txt" not in _guard._read_manifest(out)
+    assert "later.txt" not in _guard._read_manifest(out)[0]
     assert Path(out / _guard.MANIFEST_NAME).is_file()

@@ -73,6 +73,7 @@ class _State:
         self.inputs: dict[tuple[int, int], str] = {}  # (st_dev, st_ino) -> name given
         self.named: set[str] = set()  # absolute paths of outputs the user named
         self.claimed: dict[str, list[str]] = {}  # absolute directory -> recorded names
+        self.accepted: dict[str, list[str]] = {}  # ... -> foreign files a --force run kept
 
 
 _state = _State()
@@ -171,25 +172,29 @@ def check_target(path, what: str, *, named: bool | None = True) -> None:
 # --- the manifest of an output directory ----------------------------------------------
 
 
-def _read_manifest(directory: Path) -> list[str]:
-    """The names recorded in ``directory``'s manifest ([] if none or unreadable)."""
+def _read_manifest(directory: Path) -> tuple[list[str], list[str]]:
+    """The names recorded in ``directory``'s manifest, and the foreign files a ``--force``
+    run accepted there (``([], [])`` if none or unreadable)."""
     path = directory / MANIFEST_NAME
     try:
         if not stat.S_ISREG(os.lstat(path).st_mode):
-            return []
+            return [], []
         with open(path, "rb") as f:
             data = json.loads(f.read(_MANIFEST_LIMIT).decode("utf-8"))
     except (OSError, ValueError):
-        return []
-    files = data.get("files") if isinstance(data, dict) else None
-    if data.get("format") != _MANIFEST_FORMAT or not isinstance(files, list):
-        return []
-    return [f for f in files if isinstance(f, str)]
+        return [], []
+    if not isinstance(data, dict) or data.get("format") != _MANIFEST_FORMAT:
+        return [], []
+    files, accepted = data.get("files"), data.get("accepted", [])
+    if not isinstance(files, list) or not isinstance(accepted, list):
+        return [], []
+    return [f for f in files if isinstance(f, str)], [f for f in accepted if isinstance(f, str)]
 
 
-def _foreign(directory: Path, recorded: set[str], most: int = 3) -> list[str]:
-    """Up to ``most`` entries below ``directory`` that roughcontact did not write there:
-    any file not recorded (nor a lock or temporary of ours), any link, FIFO or device."""
+def _foreign(directory: Path, recorded: set[str], most: int | None = 3) -> list[str]:
+    """Up to ``most`` (None: all) entries below ``directory`` that roughcontact did not
+    write there: any file not recorded (nor a lock or temporary of ours), any link, FIFO
+    or device."""
     found = []
     for root, dirs, files in os.walk(directory, followlinks=False):
         dirs.sort()
@@ -205,7 +210,7 @@ def _foreign(directory: Path, recorded: set[str], most: int = 3) -> list[str]:
             if regular and (rel in recorded or _OURS.match(name)):
                 continue
             found.append(rel)
-            if len(found) >= most:
+            if most is not None and len(found) >= most:
                 return found
     return found
 
@@ -215,7 +220,10 @@ def claim_directory(path, what: str = "-o/--output", *, force: bool = False) -> 
 
     It must be writable (:func:`roughcontact._io.check_directory_writable`); if it
     exists, every file below it must be one that roughcontact wrote there (its manifest)
-    unless ``force``. Files the writer then puts below ``path`` are recorded.
+    unless ``force``. Files the writer then puts below ``path`` are recorded; so are the
+    regular files that a ``force`` run found there (the user accepted them: a study's own
+    inputs beside its report, say), so that a rerun into the directory needs no ``force``.
+    A file that appears later is foreign again.
 
     Raises
     ------
@@ -225,17 +233,25 @@ def claim_directory(path, what: str = "-o/--output", *, force: bool = False) -> 
     from ._io import check_directory_writable
 
     directory = check_directory_writable(path, what)
-    recorded = _read_manifest(directory) if directory.is_dir() else []
-    if directory.is_dir() and not force:
-        foreign = _foreign(directory, set(recorded))
-        if foreign:
+    recorded, accepted = _read_manifest(directory) if directory.is_dir() else ([], [])
+    if directory.is_dir():
+        known = set(recorded) | set(accepted)
+        if force:
+            accepted = sorted(  # every foreign regular file there now
+                f for f in _foreign(directory, set(recorded), most=None)
+                if stat.S_ISREG(os.lstat(directory / f).st_mode)
+            )  # fmt: skip
+        elif foreign := _foreign(directory, known):
             names = ", ".join(repr(f) for f in foreign) + (", ..." if len(foreign) >= 3 else "")
             raise ParameterError(
                 f"{what} {str(directory)!r} holds files roughcontact did not write there "
                 f"({names}); name a new or empty directory, or add --force to write into it "
                 "anyway (files of the names written are then replaced)"
             )
+        if force and accepted != _read_manifest(directory)[1]:
+            _write_manifest(directory, recorded, accepted)  # the user's word, kept now
     _state.claimed[_abs(directory)] = list(recorded)
+    _state.accepted[_abs(directory)] = list(accepted)
     return directory
 
 
@@ -250,12 +266,14 @@ def record(final) -> None:
         if rel.startswith(os.pardir) or rel in names or os.path.basename(rel) == MANIFEST_NAME:
             continue
         names.append(rel)
-        _write_manifest(Path(directory), names)
+        _write_manifest(Path(directory), names, _state.accepted.get(directory, []))
 
 
-def _write_manifest(directory: Path, names: list[str]) -> None:
+def _write_manifest(directory: Path, names: list[str], accepted: list[str]) -> None:
     from ._io import write_bytes_atomic
 
-    text = json.dumps({"format": _MANIFEST_FORMAT, "files": sorted(names)}, indent=1)
+    accepted = sorted(set(accepted).difference(names))  # a file written is ours now
+    data = {"format": _MANIFEST_FORMAT, "files": sorted(names), "accepted": accepted}
+    text = json.dumps(data, indent=1)
     directory.mkdir(parents=True, exist_ok=True)
     write_bytes_atomic(directory / MANIFEST_NAME, (text + "\n").encode("utf-8"))
