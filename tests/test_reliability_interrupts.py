@@ -41,6 +41,9 @@ def _start(tmp_path, make_study, name):
     proc = subprocess.Popen(
         cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env, text=True,
         start_new_session=True,  # its own group: a Ctrl-C to it reaches nothing else
+        # a SIGINT ignored by whoever started the tests (nohup, a CI runner, `cmd &` in a
+        # script) would stay ignored in the child: a terminal's Ctrl-C reaches it as usual
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
     )  # fmt: skip
     return proc, tmp
 
