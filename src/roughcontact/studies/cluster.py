@@ -170,7 +170,7 @@ def _local_cluster(n: int, dashboard: bool, gpus=()):
                 silence_logs=logging.ERROR,
             )
     except BaseException:  # Ctrl-C while it starts: nothing left for Dask's exit hook
-        _quiet_dask()
+        _quiet_dask(interrupted=True)
         _forget(security=security)
         remove_scratch(scratch, held)
         raise
@@ -191,7 +191,7 @@ def close(client, cluster, *, fast: bool = False) -> None:
     tasks in the middle of a solve. Dask's own log lines about the connections that
     then break are not printed, and Dask's exit hook is not left a cluster to close again.
     """
-    _quiet_dask()
+    _quiet_dask(interrupted=fast)
     try:
         if client is not None:
             client.close(timeout=FAST_CLOSE_TIMEOUT) if fast else client.close()
@@ -216,11 +216,15 @@ def close(client, cluster, *, fast: bool = False) -> None:
                     remove()
 
 
-def _quiet_dask() -> None:
-    """No more log lines from Dask in this process (its cluster is being closed)."""
+def _quiet_dask(interrupted: bool = False) -> None:
+    """No more log lines from Dask in this process (its cluster is being closed); when
+    ``interrupted`` (Ctrl-C, SIGTERM), none from asyncio either: the nannies whose worker
+    processes the interruption stopped leave "Task exception was never retrieved"."""
     import logging
 
     logging.getLogger("distributed").setLevel(logging.CRITICAL + 1)
+    if interrupted:
+        logging.getLogger("asyncio").setLevel(logging.CRITICAL + 1)
 
 
 def _kill_workers(cluster) -> None:
