@@ -59,7 +59,7 @@ __all__ = [
 ]
 
 #: Without the solver's tolerance: the numerical bound of a cycle's W as a fraction of
-#: the path's work scale ∫|N| |dd| (float64 sums of converged loads stay far below it).
+#: the path's work scale ``∫|N| |dd|`` (float64 sums of converged loads stay far below it).
 RELATIVE_TOLERANCE = 1e-6
 #: ``1/10 + (3/5) 2^(2/3)``: W_JKR in units of ``pi^(5/3) w^(5/3) R^(4/3)/E*^(2/3)``.
 JKR_CYCLE_COEFFICIENT = 0.1 + 0.6 * 2.0 ** (2.0 / 3.0)

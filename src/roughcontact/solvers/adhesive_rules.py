@@ -182,7 +182,7 @@ def floor_verdict(best, own_pressure, physical_scale, contact_modulus, tol, pati
     """Why a float64 solve whose residual stopped falling at its own rounding floor stops:
     ``(kind, message)``, ``kind`` "stalled" or "runaway" (module docstring).
 
-    ``best``: its best residual (units of E*); ``own_pressure``: its largest |p|;
+    ``best``: its best residual (units of E*); ``own_pressure``: its largest ``|p|``;
     ``physical_scale``: :func:`physical_pressure_scale`. Within :data:`FLOOR_ULPS` floors
     of the physical scale the state is an equilibrium to float64's floor ("stalled ... as
     accurate as float64 allows"); with pressures above :data:`RUNAWAY_RATIO` physical
@@ -213,7 +213,7 @@ def floor_verdict(best, own_pressure, physical_scale, contact_modulus, tol, pati
 
 
 def runaway_message(own_pressure, physical_scale, contact_modulus, residual):
-    """The message of a runaway: pressures ``own_pressure`` (largest |p|) above
+    """The message of a runaway: pressures ``own_pressure`` (largest ``|p|``) above
     :data:`RUNAWAY_RATIO` times ``physical_scale`` (:func:`physical_pressure_scale`), beyond
     any elastic equilibrium, whatever the residual says (in float32 the force balance of
     1e13 E* pressures can round to exactly 0). None when the pressures are physical."""

@@ -17,7 +17,7 @@ __all__ = [
     "PROJECTION_RTOL",
 ]
 
-#: The bounded solver's line search stops at |phi'(alpha)| <= this |phi'(0)| (the default
+#: The bounded solver's line search stops at ``|phi'(alpha)| <= this |phi'(0)|`` (the default
 #: of :func:`.line_search.line_minimum`).
 BOUNDED_LINE_SEARCH_RTOL = 1e-3
 
@@ -32,6 +32,6 @@ PROJECTED_HALVINGS = 6
 GRADIENT_HALVINGS = 40
 
 #: The projection's Newton iteration for the multiplier of the mean: at most
-#: PROJECTION_MAX_STEPS steps, done when |sum| <= PROJECTION_RTOL (sum|lower| + sum|v|).
+#: PROJECTION_MAX_STEPS steps, done when ``|sum| <= PROJECTION_RTOL (sum|lower| + sum|v|)``.
 PROJECTION_MAX_STEPS = 200
 PROJECTION_RTOL = 1e-13

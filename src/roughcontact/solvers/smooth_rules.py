@@ -21,7 +21,7 @@ __all__ = [
     "STIFF_FRACTION",
 ]
 
-#: The line search stops at |phi'(alpha)| <= LINE_SEARCH_RTOL |phi'(0)|: the strong Wolfe
+#: The line search stops at ``|phi'(alpha)| <= LINE_SEARCH_RTOL |phi'(0)|``: the strong Wolfe
 #: curvature condition, whose c2 = 0.1 Nocedal & Wright (Numerical Optimization, 2nd ed.,
 #: §5.2) suggest for nonlinear CG. 1e-3 to 0.1 took the same iterations (benchmark approach,
 #: 256²-1024², within 2 %) at 2.9 -> 2.1 evaluations per line search (ℓa = 0.05) and
@@ -45,7 +45,7 @@ RESTART_EVERY = 200
 REFRESH_EVERY = 10
 
 #: float64 solves stop as stalled (see :class:`.smooth.FloorGuard`) when their best residual
-#: has not halved in FLOOR_PATIENCE iterations and lies within FLOOR_ULPS floors eps max|p|/E*.
+#: has not halved in FLOOR_PATIENCE iterations and lies within FLOOR_ULPS floors ``eps max|p|/E*``.
 FLOOR_PATIENCE = 100
 FLOOR_ULPS = 256
 EPS64 = 2.220446049250313e-16  # float64 machine epsilon, 2**-52
