@@ -74,6 +74,7 @@ class _State:
         self.named: set[str] = set()  # absolute paths of outputs the user named
         self.claimed: dict[str, list[str]] = {}  # absolute directory -> recorded names
         self.accepted: dict[str, list[str]] = {}  # ... -> foreign files a --force run kept
+        self.write = None  # the writer of the manifests (roughcontact._io.write_bytes_atomic)
 
 
 _state = _State()
@@ -215,12 +216,12 @@ def _foreign(directory: Path, recorded: set[str], most: int | None = 3) -> list[
     return found
 
 
-def claim_directory(path, what: str = "-o/--output", *, force: bool = False) -> Path:
-    """Claim the output directory ``path`` for this command, before any work.
-
-    It must be writable (:func:`roughcontact._io.check_directory_writable`); if it
-    exists, every file below it must be one that roughcontact wrote there (its manifest)
-    unless ``force``. Files the writer then puts below ``path`` are recorded; so are the
+def claim_directory(directory: Path, what: str, *, force: bool, write) -> Path:
+    """Claim the output ``directory`` (checked writable by the caller,
+    :func:`roughcontact._io.claim_directory`) for this command, before any work; ``write``
+    writes its manifest (``write(path, bytes)``, the writer). If it exists, every file
+    below it must be one that roughcontact wrote there (its manifest)
+    unless ``force``. Files the writer then puts below ``directory`` are recorded; so are the
     regular files that a ``force`` run found there (the user accepted them: a study's own
     inputs beside its report, say), so that a rerun into the directory needs no ``force``.
     A file that appears later is foreign again.
@@ -230,9 +231,7 @@ def claim_directory(path, what: str = "-o/--output", *, force: bool = False) -> 
     ParameterError
         One line naming ``what``, ``path`` and up to three files it holds.
     """
-    from ._io import check_directory_writable
-
-    directory = check_directory_writable(path, what)
+    _state.write = write
     recorded, accepted = _read_manifest(directory) if directory.is_dir() else ([], [])
     if directory.is_dir():
         known = set(recorded) | set(accepted)
@@ -270,10 +269,60 @@ def record(final) -> None:
 
 
 def _write_manifest(directory: Path, names: list[str], accepted: list[str]) -> None:
-    from ._io import write_bytes_atomic
-
     accepted = sorted(set(accepted).difference(names))  # a file written is ours now
     data = {"format": _MANIFEST_FORMAT, "files": sorted(names), "accepted": accepted}
     text = json.dumps(data, indent=1)
     directory.mkdir(parents=True, exist_ok=True)
-    write_bytes_atomic(directory / MANIFEST_NAME, (text + "\n").encode("utf-8"))
+    _state.write(directory / MANIFEST_NAME, (text + "\n").encode("utf-8"))
+
+
+# --- a study directory's own files ----------------------------------------------------
+
+#: The files of a study directory (``roughcontact.studies.store``: its manifest
+#: ``study.json``, the study file's copy, task files, failure records, the lock and the
+#: writer's temporaries), never replaced by another command's output.
+STUDY_FILES = ("study.json", "study.toml", "task-*.nc", "task-*.json", ".roughcontact.lock",
+               ".*.tmp")  # fmt: skip
+
+
+def _study_source(directory: Path):
+    """The study file a study directory was run from (its manifest's ``source``), or None."""
+    try:
+        fd = os.open(directory / STUDY_FILES[0], os.O_RDONLY | getattr(os, "O_NOFOLLOW", 0))
+        with os.fdopen(fd, "rb") as f:
+            if not stat.S_ISREG(os.fstat(f.fileno()).st_mode):
+                return None
+            source = json.loads(f.read(_MANIFEST_LIMIT).decode("utf-8")).get("source")
+    except (OSError, ValueError, AttributeError):
+        return None
+    return source if isinstance(source, str) and not source.startswith("<") else None
+
+
+def check_not_study_file(out_dir, path, what: str = "output") -> None:
+    """Refuse ``path`` as an output if it is a study file of ``out_dir`` (one line).
+
+    A study's own files (:data:`STUDY_FILES`, and the study file it was run from) are
+    never replaced by another command's output: by name in the study directory, and by
+    ``st_dev``/``st_ino`` wherever another path or a hard link names one (registered as
+    inputs for the writer).
+    """
+    import fnmatch
+
+    out = Path(out_dir)
+    if not out.is_dir():
+        return
+    own = [p for p in out.iterdir() if any(fnmatch.fnmatch(p.name, n) for n in STUDY_FILES)]
+    protect(*(p for p in own if stat.S_ISREG(os.lstat(p).st_mode)))
+    if (source := _study_source(out)) is not None:
+        protect(source)
+    target = Path(path)
+    try:
+        inside = target.parent.resolve() == out.resolve()
+    except OSError:
+        inside = False
+    if inside and any(fnmatch.fnmatch(target.name, n) for n in STUDY_FILES):
+        raise ParameterError(
+            f"{what} {str(path)!r} is a file of the study in {str(out_dir)!r} (its task files, "
+            f"{STUDY_FILES[0]}, study.toml and lock are never replaced); name another file"
+        )
+    check_target(target, what)

@@ -282,10 +282,8 @@ def check_writable(path, what: str = "output", *, inputs=(), protected=()) -> Pa
     _guard.protect(*inputs, *protected)
     _guard.name_output(final)
     _guard.check_target(final, what)
-    if (parent / "study.json").is_file():  # a study directory: its task files, lock, ...
-        from .studies.store import check_not_study_file
-
-        check_not_study_file(parent, final, what)
+    if (parent / _guard.STUDY_FILES[0]).is_file():  # a study directory: its task files, ...
+        _guard.check_not_study_file(parent, final, what)
     _probe(final.with_name(f".{final.name}.{uuid.uuid4().hex[:12]}.probe"), what, final)
     return final
 
@@ -321,7 +319,8 @@ def check_directory_writable(path, what: str = "output directory") -> Path:
 def claim_directory(path, what: str = "-o/--output", *, force: bool = False) -> Path:
     """Claim a report directory before any work (:func:`roughcontact._guard.claim_directory`):
     refused if it holds files roughcontact did not write there, unless ``force``."""
-    return _guard.claim_directory(path, what, force=force)
+    directory = check_directory_writable(path, what)
+    return _guard.claim_directory(directory, what, force=force, write=write_bytes_atomic)
 
 
 def output_directory(path, what: str = "output directory") -> Path:

@@ -40,12 +40,12 @@ def claim_output_directory(out_dir, *inputs):
     """Check and claim the -o directory before any work (a directory holding foreign
     files is refused unless --force; see :func:`roughcontact._guard.claim_directory`);
     ``inputs`` (files read) are never replaced by what is written there."""
-    from .. import _guard
+    from .. import _guard, _io
 
     ctx = click.get_current_context(silent=True)
     force = bool(ctx is not None and ctx.meta.get(_FORCE))
     _guard.protect(*inputs)
-    return _guard.claim_directory(out_dir, "-o/--output", force=force)
+    return _io.claim_directory(out_dir, "-o/--output", force=force)
 
 
 def check_fields_file(name, *inputs) -> None:

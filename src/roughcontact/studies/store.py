@@ -30,6 +30,8 @@ import stat
 import time
 from pathlib import Path
 
+from .._guard import STUDY_FILES
+from .._guard import check_not_study_file as check_not_study_file  # its public name
 from .._validate import ParameterError
 from ..pathdata import FIELDS
 from .lock import UnsafePath, open_regular
@@ -257,41 +259,5 @@ def read_manifest(out_dir) -> dict:
 
 
 #: names of a study directory's own files (fnmatch patterns)
-_OWN_NAMES = (MANIFEST, "study.toml", _TASK_FILES, "task-*.json", ".roughcontact.lock", ".*.tmp")
-
-
-def check_not_study_file(out_dir, path, what: str = "output") -> None:
-    """Refuse ``path`` as an output if it is a study file of ``out_dir`` (one line).
-
-    A study's own files (:data:`MANIFEST`, ``study.toml``, task files, failure records,
-    the lock, and the study file it was run from) are never replaced by another command's
-    output: by name in the study directory, and by ``st_dev``/``st_ino`` wherever another
-    path or a hard link names one (they are registered as protected for the writer,
-    :mod:`roughcontact._guard`).
-    """
-    import fnmatch
-
-    from .. import _guard
-
-    out = Path(out_dir)
-    if not out.is_dir():
-        return
-    own = [p for p in out.iterdir() if any(fnmatch.fnmatch(p.name, n) for n in _OWN_NAMES)]
-    _guard.protect(*(p for p in own if is_regular(p)))
-    try:  # the study file it was run from, too (a file name; '<...>' for a built-in one)
-        source = read_manifest(out).get("source")
-    except Exception:  # noqa: BLE001 - no readable manifest: nothing more to protect
-        source = None
-    if isinstance(source, str) and not source.startswith("<"):
-        _guard.protect(source)
-    target = Path(path)
-    try:
-        inside = target.parent.resolve() == out.resolve()
-    except OSError:
-        inside = False
-    if inside and any(fnmatch.fnmatch(target.name, n) for n in _OWN_NAMES):
-        raise ParameterError(
-            f"{what} {str(path)!r} is a file of the study in {str(out_dir)!r} (its task files, "
-            f"{MANIFEST}, study.toml and lock are never replaced); name another file"
-        )
-    _guard.check_target(target, what)
+#: a study's own files (the writer's rule, :func:`roughcontact._guard.check_not_study_file`)
+assert MANIFEST == STUDY_FILES[0] and _TASK_FILES in STUDY_FILES
