@@ -15,15 +15,6 @@ HARD_EXP = rc.Exponential(0.01, 0.5)
 SOFT_CORE = rc.Exponential(0.01, 0.5, core_stiffness=1.0)
 
 
-@pytest.fixture()
-def x64():
-    """float64 in JAX for the test, the setting restored afterwards."""
-    old = bool(jax.config.jax_enable_x64)
-    jax.config.update("jax_enable_x64", True)
-    yield
-    jax.config.update("jax_enable_x64", old)
-
-
 def rough(n=64, seed=1):
     """Heights (rms ~1-2 pixels), the substrate and the heights' top."""
     h = rc.self_affine((n, n), hurst=0.8, rms_slope=0.3, short_cutoff=4.0, seed=seed)

@@ -20,15 +20,6 @@ STRONG = rc.SmoothLJ93.from_adhesion_length(0.05)
 SOFT_CORE = rc.Exponential(0.01, 0.5, core_stiffness=1.0)
 
 
-@pytest.fixture()
-def x64():
-    """float64 in JAX for the test, the setting restored afterwards."""
-    old = bool(jax.config.jax_enable_x64)
-    jax.config.update("jax_enable_x64", True)
-    yield
-    jax.config.update("jax_enable_x64", old)
-
-
 def surface(n=64, seed=7):
     h = rc.self_affine((n, n), hurst=0.8, rms_slope=0.1, short_cutoff=4, seed=seed)
     return h, rc.Substrate((n, n))
@@ -190,14 +181,6 @@ def test_physical_scale_on_the_device(x64):
     assert physical_pressure_scale(jnp.asarray(h), sub, LAW) == pytest.approx(
         physical_pressure_scale(h, sub, LAW), rel=1e-12
     )
-
-
-@pytest.fixture()
-def x32():
-    old = bool(jax.config.jax_enable_x64)
-    jax.config.update("jax_enable_x64", False)
-    yield
-    jax.config.update("jax_enable_x64", old)
 
 
 @pytest.mark.parametrize("law", [LAW, HARD_CORE])

@@ -10,14 +10,6 @@ jax = pytest.importorskip("jax")
 jnp = pytest.importorskip("jax.numpy")
 
 
-@pytest.fixture()
-def x64():
-    old = bool(jax.config.jax_enable_x64)
-    jax.config.update("jax_enable_x64", True)
-    yield
-    jax.config.update("jax_enable_x64", old)
-
-
 def rough(n=64):
     h = rc.self_affine((n, n), hurst=0.8, rms_slope=0.3, short_cutoff=4.0, seed=1)
     return h, rc.Substrate((n, n))

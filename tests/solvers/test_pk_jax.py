@@ -15,23 +15,6 @@ jax = pytest.importorskip("jax")
 jnp = pytest.importorskip("jax.numpy")
 
 
-@pytest.fixture()
-def x64():
-    """float64 in JAX for the test, the setting restored afterwards."""
-    old = bool(jax.config.jax_enable_x64)
-    jax.config.update("jax_enable_x64", True)
-    yield
-    jax.config.update("jax_enable_x64", old)
-
-
-@pytest.fixture()
-def x32():
-    old = bool(jax.config.jax_enable_x64)
-    jax.config.update("jax_enable_x64", False)
-    yield
-    jax.config.update("jax_enable_x64", old)
-
-
 def rough(n=64):
     h = rc.self_affine((n, n), hurst=0.8, rms_slope=0.1, short_cutoff=4.0, seed=3)
     return h, rc.Substrate((n, n))

@@ -14,23 +14,6 @@ LAW = rc.SmoothLJ93.from_adhesion_length(0.005)
 SOFT_CORE = rc.Exponential(0.01, 0.5, core_stiffness=1.0)
 
 
-@pytest.fixture()
-def x64():
-    """float64 in JAX for the test, the setting restored afterwards."""
-    old = bool(jax.config.jax_enable_x64)
-    jax.config.update("jax_enable_x64", True)
-    yield
-    jax.config.update("jax_enable_x64", old)
-
-
-@pytest.fixture()
-def x32():
-    old = bool(jax.config.jax_enable_x64)
-    jax.config.update("jax_enable_x64", False)
-    yield
-    jax.config.update("jax_enable_x64", old)
-
-
 def rough(n=64, seed=1):
     """Heights (a0 = 1: rms ~1-2 a0), the substrate, and an offset with 1-10 % of the
     surface in repulsive and attractive contact."""
