@@ -61,6 +61,8 @@ if __name__ == "__main__":  # before NumPy or SciPy loads its BLAS: see _threads
     _threads.preset_from_argv(sys.argv[1:], "--blas-threads", default=None)
 
 import argparse
+import contextlib
+import functools
 import json
 import time
 
@@ -190,6 +192,31 @@ def jax_fft_pair_seconds(n: int, device, dtype: str, repeats: int = 9) -> float:
     return float(np.median(times))
 
 
+@contextlib.contextmanager
+def loop_footprints(record: list):
+    """Spy on the compiled loops (``run`` of the three JAX modules): for each call, XLA's
+    memory analysis of the compiled loop -- arguments + outputs - aliased + temporaries,
+    bytes -- appended to ``record``. The analysis compiles the loop once more (untimed)."""
+    from roughcontact.solvers import _bounded_jax, _pk_jax, _smooth_jax
+
+    originals = {m: m.run for m in (_pk_jax, _smooth_jax, _bounded_jax)}
+
+    def spy(*a, _run, **kw):
+        ma = _run.lower(*a, **kw).compile().memory_analysis()
+        if ma is not None:
+            record.append(ma.argument_size_in_bytes + ma.output_size_in_bytes
+                          - ma.alias_size_in_bytes + ma.temp_size_in_bytes)  # fmt: skip
+        return _run(*a, **kw)
+
+    for module, run in originals.items():
+        module.run = functools.partial(spy, _run=run)
+    try:
+        yield record
+    finally:
+        for module, run in originals.items():
+            module.run = run
+
+
 def bench_size_jax(n: int, args, device: str) -> dict:
     """Every compiled loop on a JAX array (hard wall under load control; the smoothed 9-3
     wall and Maugis-Dugdale at an offset) and, on the CPU, the NumPy loops beside them."""
@@ -203,9 +230,12 @@ def bench_size_jax(n: int, args, device: str) -> dict:
     dugdale = rc.MaugisDugdale(args.adhesion_length * ES, law.range)
     d_hw = rc.solve(h, sub, rc.HardWall(), load=args.end_load).offset  # untimed (NumPy)
     hj = jax.device_put(jnp.asarray(h, dtype=args.dtype), dev)
+    # a warm start skips the nested coarse-grid solves: every iteration on the n x n grid
+    uniform = jax.device_put(jnp.full((n, n), args.load, dtype=args.dtype), dev)
     row = {"n": n, "device": f"jax:{dev.platform}", "dtype": args.dtype}
     row["fft_seconds"] = jax_fft_pair_seconds(n, dev, args.dtype)
     solvers = {"hardwall": (rc.HardWall(), {"load": args.load}),
+               "hardwall_loop": (rc.HardWall(), {"load": args.load, "initial": uniform}),
                "adhesive": (law, {"offset": d_hw + A0}),
                "bounded": (dugdale, {"offset": d_hw}),
                "adhesive_load": (law, {"load": args.load}),
@@ -215,9 +245,13 @@ def bench_size_jax(n: int, args, device: str) -> dict:
         lw, control = solvers[name]
 
         def one(heights, lw=lw, control=control):  # the record's scalars reach the host:
-            t0 = time.perf_counter()  # the solve has finished
+            if "initial" in control and isinstance(heights, np.ndarray):  # the solve has
+                control = dict(control, initial=np.full((n, n), args.load))  # finished
+            t0 = time.perf_counter()
             res = rc.solve(heights, sub, lw, **control)
-            return time.perf_counter() - t0, res
+            return time.perf_counter() - t0, {  # no field is kept
+                "iterations": res.iterations, "converged": res.converged,
+                "repulsive_area": res.repulsive_area, "message": res.message}  # fmt: skip
 
         first, _ = one(hj)  # compiles the loop (every grid of the hard wall's nested solves)
         jobs = [(name, [one(hj) for _ in range(args.repeats)])]
@@ -228,16 +262,18 @@ def bench_size_jax(n: int, args, device: str) -> dict:
         for key, runs in jobs:
             res = runs[0][1]
             seconds = float(np.median([t for t, _ in runs]))
-            row[key] = {
-                "seconds": seconds, "iterations": res.iterations, "converged": res.converged,
-                "repulsive_area": res.repulsive_area, "peak_bytes": None, "peak_arrays": None,
-                "ms_per_iteration": 1e3 * seconds / max(res.iterations, 1),
-                "iteration_over_fft": seconds / max(res.iterations, 1) / row["fft_seconds"],
-                "all_seconds": [t for t, _ in runs], "message": res.message,
-            }  # fmt: skip
+            row[key] = dict(res, seconds=seconds, peak_bytes=None, peak_arrays=None,
+                            ms_per_iteration=1e3 * seconds / max(res["iterations"], 1),
+                            iteration_over_fft=seconds / max(res["iterations"], 1)
+                            / row["fft_seconds"], all_seconds=[t for t, _ in runs])  # fmt: skip
         row[name]["first_seconds"] = first
         if numpy_too and device != "cpu":  # the accelerator against the NumPy loop here
             row[name]["speedup_over_cpu"] = row[f"{name}_numpy"]["seconds"] / row[name]["seconds"]
+        with loop_footprints([]) as sizes:  # the compiled loop's own memory (any device)
+            one(hj)
+        if sizes:
+            row[name]["loop_bytes"] = max(sizes)
+            row[name]["loop_arrays"] = max(sizes) / (n * n * 8)
         stats = dev.memory_stats() or {}  # a GPU's allocator; the process's peak so far
         if stats.get("peak_bytes_in_use"):
             row[name]["peak_bytes"] = stats["peak_bytes_in_use"]
@@ -282,13 +318,16 @@ def bench_path(n: int, args, device: str) -> dict:
 
 def fmt(row: dict) -> list[str]:
     out = []
-    for name in ("hardwall", "hardwall_numpy", "adhesive", "adhesive_numpy", "bounded",
+    for name in ("hardwall", "hardwall_numpy", "hardwall_loop", "hardwall_loop_numpy",
+                 "adhesive", "adhesive_numpy", "bounded",
                  "bounded_numpy", "adhesive_load", "adhesive_load_numpy", "bounded_load",
                  "bounded_load_numpy"):  # fmt: skip
         r = row.get(name)
         if r is None:
             continue
         peak = f"{r['peak_arrays']:.1f}" if r["peak_arrays"] else "-"
+        if r.get("loop_arrays"):
+            peak += f" (loop {r['loop_arrays']:.1f})"
         out.append(
             f"{row['device']:>5} {row['dtype']:>7} {row['n']:>6}² {name:>9} "
             f"{r['seconds']:9.3f} s {r['iterations']:>6} it {r['ms_per_iteration']:9.3f} ms/it "
@@ -313,7 +352,14 @@ def main(argv=None) -> int:
     ap.add_argument(
         "--solvers",
         nargs="+",
-        choices=["hardwall", "adhesive", "bounded", "adhesive_load", "bounded_load"],
+        choices=[
+            "hardwall",
+            "hardwall_loop",
+            "adhesive",
+            "bounded",
+            "adhesive_load",
+            "bounded_load",
+        ],
         default=["hardwall", "adhesive", "bounded"],
         help="--backend jax: the compiled loops to time (bounded: Maugis-Dugdale; *_load: "
         "under load control at --load)",

@@ -79,3 +79,17 @@ def assert_numbers_close(actual, expected, *, rel=1e-9, abs=1e-15, where="$"):
         ), (where, actual, expected)
     else:  # str, bool, int, None: exact (an int that became a float is a change)
         assert type(actual) is type(expected) and actual == expected, (where, actual, expected)
+
+
+def donatable(state, count: int):
+    """``count`` independent copies of a compiled loop's state record: ``run`` takes its
+    argument's buffers over (donated, deleted after the call), so each call needs its own."""
+    jax = pytest.importorskip("jax")
+    return [jax.tree.map(lambda x: x.copy(), state) for _ in range(count)]
+
+
+def assert_donated(state):
+    """The loop reused the state's buffers (its memory is not held twice)."""
+    jax = pytest.importorskip("jax")
+    leaves = [x for x in jax.tree.leaves(state) if getattr(x, "ndim", 0) >= 1]
+    assert leaves and all(x.is_deleted() for x in leaves)

@@ -4,6 +4,7 @@ loop that never talks to the host (``jax.transfer_guard("disallow")``)."""
 
 import numpy as np
 import pytest
+from _helpers import assert_donated, donatable
 
 import roughcontact as rc
 
@@ -57,11 +58,13 @@ def test_no_host_transfer_inside_the_loop(x64):
     st, k = bj.prepare(jnp.zeros_like(base), sub, base=base, wall_tol=1e-12 * float(h.std()),
                        tol=1e-8, max_iter=500, restart_every=200)  # fmt: skip
     static = {"law": HARD_EXP, "rigid": True, "stall": False}
+    first, second, third = donatable(st, 3)
     with jax.transfer_guard("disallow"):
-        final = bj.run(st, k, **static)  # compiles and runs
-        final = bj.run(st, k, **static)  # the compiled program
+        final = bj.run(first, k, **static)  # compiles and runs
+        final = bj.run(second, k, **static)  # the compiled program
         with pytest.raises(Exception, match="(?i)disallowed"):  # the guard is armed: a
-            bj.run(st, k._replace(tol=1e-8), **static)  # host scalar is refused
+            bj.run(third, k._replace(tol=1e-8), **static)  # host scalar is refused
+    assert_donated(second)
     assert int(final.status) == bj.CONVERGED and float(final.residual) <= 1e-8
     ref = rc.solve(h, sub, HARD_EXP, offset=d)
     assert int(final.it) == ref.iterations

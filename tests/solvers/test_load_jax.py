@@ -7,6 +7,7 @@ never talks to the host (``jax.transfer_guard("disallow")``)."""
 
 import numpy as np
 import pytest
+from _helpers import assert_donated, donatable
 
 import roughcontact as rc
 from roughcontact import SolveStatus
@@ -68,11 +69,13 @@ def test_the_compiled_loop_takes_the_load_without_the_host(x64):
                        restart_every=200, refresh_every=10, warm=False, load=1e-3,
                        heights=hj)  # fmt: skip
     static = {"law": LAW, "rigid": True, "stall": False, "floor": True}
+    first, second, third = donatable(st, 3)
     with jax.transfer_guard("disallow"):
-        final = sj.run(st, k, **static)  # compiles and runs
-        final = sj.run(st, k, **static)  # the compiled program
+        final = sj.run(first, k, **static)  # compiles and runs
+        final = sj.run(second, k, **static)  # the compiled program
         with pytest.raises(Exception, match="(?i)disallowed"):  # the guard is armed: a
-            sj.run(st, k._replace(load=1e-3), **static)  # host scalar is refused
+            sj.run(third, k._replace(load=1e-3), **static)  # host scalar is refused
+    assert_donated(second)
     ref = minimize_energy(h, sub, LAW, offset=d, load=1e-3)
     assert int(final.status) == sj.CONVERGED and int(final.it) == ref.iterations
     p = np.asarray(LAW.pressure(final.gap))
@@ -159,11 +162,13 @@ def test_the_bounded_loop_takes_the_load_without_the_host(x64):
                        tol=1e-8, max_iter=500, restart_every=200, load=1e-3, heights=hj,
                        law=HARD_CORE)  # fmt: skip
     static = {"law": HARD_CORE, "rigid": True, "stall": False}
+    first, second, third = donatable(st, 3)
     with jax.transfer_guard("disallow"):
-        final = bj.run(st, k, **static)  # compiles and runs
-        final = bj.run(st, k, **static)  # the compiled program
+        final = bj.run(first, k, **static)  # compiles and runs
+        final = bj.run(second, k, **static)  # the compiled program
         with pytest.raises(Exception, match="(?i)disallowed"):
-            bj.run(st, k._replace(load=1e-3), **static)
+            bj.run(third, k._replace(load=1e-3), **static)
+    assert_donated(second)
     ref = minimize_energy_bounded(h, sub, HARD_CORE, offset=d, load=1e-3)
     assert int(final.status) == bj.CONVERGED and int(final.it) == ref.iterations
     traction = np.asarray(bj.fields(final, k, HARD_CORE)[0])

@@ -3,6 +3,7 @@ that never talks to the host (checked under ``jax.transfer_guard("disallow")``).
 
 import numpy as np
 import pytest
+from _helpers import assert_donated, donatable
 
 import roughcontact as rc
 from roughcontact.theory import (
@@ -75,11 +76,13 @@ def test_no_host_transfer_inside_the_loop(x64, control):
     st, k = _pk_jax.prepare(p0, sub, h=hj, target=target, offset=offset, scale=float(h.std()),
                             winkler=0.5, tol=1e-8, max_iter=500, precondition=True)  # fmt: skip
     static = {"load": control == "load", "precondition": True, "rigid_mean": True}
+    first, second, third = donatable(st, 3)
     with jax.transfer_guard("disallow"):
-        final, d = _pk_jax.run(st, k, stall=False, **static)  # compiles and runs
-        final, d = _pk_jax.run(st, k, stall=False, **static)  # the compiled program
+        final, d = _pk_jax.run(first, k, stall=False, **static)  # compiles and runs
+        final, d = _pk_jax.run(second, k, stall=False, **static)  # the compiled program
         with pytest.raises(Exception, match="(?i)disallowed"):  # the guard is armed: a
-            _pk_jax.run(st, k._replace(tol=1e-8), stall=False, **static)  # host scalar
+            _pk_jax.run(third, k._replace(tol=1e-8), stall=False, **static)  # host scalar
+    assert_donated(second)
     it, residual, status = (int(final.it), float(final.residual), int(final.status))
     assert status == _pk_jax.CONVERGED and residual <= 1e-8 and it > 5
     ref = rc.polonsky_keer(h, sub, load=None if target is None else 0.01, offset=offset)

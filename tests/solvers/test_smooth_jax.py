@@ -4,6 +4,7 @@ NumPy loop's iterations and answers, warm starts, and a loop that never talks to
 
 import numpy as np
 import pytest
+from _helpers import assert_donated, donatable
 
 import roughcontact as rc
 
@@ -65,11 +66,13 @@ def test_no_host_transfer_inside_the_loop(x64):
     st, k = sj.prepare(jnp.zeros_like(base), sub, LAW, base=base, tol=1e-8, max_iter=500,
                        restart_every=200, refresh_every=10, warm=False)  # fmt: skip
     static = {"law": LAW, "rigid": True, "stall": False, "floor": True}
+    first, second, third = donatable(st, 3)
     with jax.transfer_guard("disallow"):
-        final = sj.run(st, k, **static)  # compiles and runs
-        final = sj.run(st, k, **static)  # the compiled program
+        final = sj.run(first, k, **static)  # compiles and runs
+        final = sj.run(second, k, **static)  # the compiled program
         with pytest.raises(Exception, match="(?i)disallowed"):  # the guard is armed: a
-            sj.run(st, k._replace(tol=1e-8), **static)  # host scalar is refused
+            sj.run(third, k._replace(tol=1e-8), **static)  # host scalar is refused
+    assert_donated(second)
     assert int(final.status) == sj.CONVERGED and float(final.residual) <= 1e-8
     ref = rc.solve(h, sub, LAW, offset=d)
     assert int(final.it) == ref.iterations

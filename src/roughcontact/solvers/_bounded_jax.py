@@ -168,7 +168,9 @@ def _initial(w, k, rigid):
     )  # fmt: skip
 
 
-@partial(jax.jit, static_argnames=("law", "rigid", "stall"))
+@partial(
+    jax.jit, static_argnames=("law", "rigid", "stall"), donate_argnames="st"
+)  # the state's buffers are reused
 def run(st, k, *, law, rigid, stall):
     """Iterate from ``st`` until the status is not RUNNING; one compiled program.
 

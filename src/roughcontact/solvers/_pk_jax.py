@@ -138,14 +138,17 @@ def prepare(p, substrate, *, h, target, offset, scale, winkler, tol, max_iter, p
         winkler=scalar(winkler, h.dtype), site_stiffness=scalar(substrate.self_stiffness),
         tol=scalar(tol), max_iter=scalar(max_iter, jnp.int32),
     )  # fmt: skip
-    inf, i0 = scalar(jnp.inf), scalar(0, jnp.int32)
-    false = jax.device_put(jnp.asarray(False), h.device)
-    pre = jax.device_put(jnp.asarray(bool(precondition)), h.device)
-    s = _exact_s(p, k)
-    true = jax.device_put(jnp.asarray(True), h.device)
-    st = State(p=p, s=s, exact=true, t=jnp.zeros_like(p), g_old=scalar(1.0), delta=false,
-               pre=pre, resume_below=scalar(-jnp.inf), it=i0, residual=inf, best=inf,
-               since=i0, status=i0)  # fmt: skip
+
+    def flag(v):
+        return jax.device_put(jnp.asarray(v), h.device)
+
+    # one buffer per field: ``run`` takes the state's buffers over (donated), and a buffer
+    # may be donated only once
+    st = State(p=p, s=_exact_s(p, k), exact=flag(True), t=jnp.zeros_like(p),
+               g_old=scalar(1.0), delta=flag(False), pre=flag(bool(precondition)),
+               resume_below=scalar(-jnp.inf), it=scalar(0, jnp.int32),
+               residual=scalar(jnp.inf), best=scalar(jnp.inf), since=scalar(0, jnp.int32),
+               status=scalar(0, jnp.int32))  # fmt: skip
     return st, k
 
 
@@ -158,7 +161,9 @@ def _exact_s(p, k):
     return _conv(p, k.green) - k.h
 
 
-@partial(jax.jit, static_argnames=("load", "precondition", "rigid_mean", "stall"))
+@partial(
+    jax.jit, static_argnames=("load", "precondition", "rigid_mean", "stall"), donate_argnames="st"
+)  # the state's buffers are reused
 def run(st, k, *, load, precondition, rigid_mean, stall):
     """Iterate from ``st`` until the status is not RUNNING; one compiled program.
 

@@ -248,7 +248,9 @@ def line_minimum(law, gap, s, c0, c1, slope0, acc, rtol=LINE_SEARCH_RTOL):
     return alpha, c[5]
 
 
-@partial(jax.jit, static_argnames=("law", "rigid", "stall", "floor"))
+@partial(
+    jax.jit, static_argnames=("law", "rigid", "stall", "floor"), donate_argnames="st"
+)  # the state's buffers are reused
 def run(st, k, *, law, rigid, stall, floor):
     """Iterate from ``st`` until the status is not RUNNING; one compiled program.
 
