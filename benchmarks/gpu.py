@@ -39,7 +39,13 @@ solve) is reported apart (``first_seconds``), ``it/fft`` is the time per iterati
 one compiled ``rfft2`` + ``irfft2`` pair, and the same problem solved by the NumPy loop
 on the CPU (``*_numpy``, and ``speedup_over_cpu`` on an accelerator) when the size is in
 ``--cpu-sizes`` or the device is the CPU. On a GPU ``peak_arrays`` is JAX's allocator
-peak so far in the process (monotone over the rows) in n x n float64 arrays. The path
+peak so far in the process (monotone over the rows) in n x n float64 arrays; on any device
+``loop_arrays`` is XLA's own account of the compiled loop program (arguments + outputs -
+aliased + temporaries; ``--no-footprint`` skips it: it compiles the loop once more).
+``hardwall_loop`` is the hard wall warm-started from a uniform pressure, which skips the
+nested coarse-grid solves of a cold start: every iteration on the n x n grid, the cost of
+one iteration of the compiled loop (``hardwall``'s ms/it divides the whole nested solve by
+the fine grid's iterations alone). The path
 (``--path-size``) then runs on JAX heights, after an untimed 2-state path compiles it.
 
 Surface generation and the hard-wall solve that fixes the offsets are never timed; each
@@ -269,8 +275,10 @@ def bench_size_jax(n: int, args, device: str) -> dict:
         row[name]["first_seconds"] = first
         if numpy_too and device != "cpu":  # the accelerator against the NumPy loop here
             row[name]["speedup_over_cpu"] = row[f"{name}_numpy"]["seconds"] / row[name]["seconds"]
-        with loop_footprints([]) as sizes:  # the compiled loop's own memory (any device)
-            one(hj)
+        sizes = []
+        if args.footprint:  # the compiled loop's own memory (any device)
+            with loop_footprints(sizes):
+                one(hj)
         if sizes:
             row[name]["loop_bytes"] = max(sizes)
             row[name]["loop_arrays"] = max(sizes) / (n * n * 8)
@@ -380,6 +388,13 @@ def main(argv=None) -> int:
         default=None,
         help="BLAS/OpenMP threads per library, set before NumPy loads and verified (default: "
         "the libraries' own; recorded either way)",
+    )
+    ap.add_argument(
+        "--no-footprint",
+        dest="footprint",
+        action="store_false",
+        help="--backend jax: skip XLA's memory account of each compiled loop (one more "
+        "compilation and solve per row)",
     )
     ap.add_argument("--json", metavar="OUT")
     args = ap.parse_args(argv)

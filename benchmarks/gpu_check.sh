@@ -17,6 +17,9 @@
 #   PART=jax benchmarks/gpu_check.sh                # issue 38 (<= 9 min): the compiled
 #                                                   # loops' tests, float64/float32 sizes
 #                                                   # (GPU/CPU at CPU_SIZE), JAX path
+#   PART=one benchmarks/gpu_check.sh              # every figure of issue 38's item 5 in
+#                                                   # one call of <= 9 min (the session's
+#                                                   # whole device budget is 15 min)
 # Two device calls of <= 9 minutes: PART=jax, then PART=second (the paper task and the
 # 512² task on the GPU; PART=all adds the 512² task on one CPU core and the Dask study).
 set -u -o pipefail
@@ -48,8 +51,43 @@ step() {  # step SECONDS TITLE COMMAND...: run with a limit, log the time it too
     fi
     $PY -c "import sys, numpy, scipy, array_api_compat, roughcontact; print(sys.version.split()[0], 'numpy', numpy.__version__, 'scipy', scipy.__version__, 'array_api_compat', array_api_compat.__version__, roughcontact.__file__)"
     [ "$DEVICE" != cpu ] && $PY -c "import cupy; print('cupy', cupy.__version__)"
+    $PY -c "import jax; print('jax', jax.__version__, jax.devices())"
     cpu=(--cpu-sizes)
     [ -n "$CPU_SIZE" ] && [ "$PART" != second ] && cpu=(--cpu-sizes "$CPU_SIZE" --cpu-repeats 1)
+    if [ "$PART" = one ]; then  # issue 38's item 5 in one call, each step with its limit
+        step 60 "GPU tests: compiled loops, DLPack/CuPy routing" $PY -m pytest -q -n 0 \
+            -p no:cacheprovider tests/solvers/test_pk_jax.py tests/solvers/test_smooth_jax.py \
+            tests/solvers/test_bounded_jax.py tests/solvers/test_jax_memory.py \
+            tests/backends -k "no_host_transfer or same_answer or cupy or dlpack or donat or holds"
+        # shellcheck disable=SC2086
+        step 120 "gpu.py jax float64: every compiled loop, per iteration, memory" $PY \
+            benchmarks/gpu.py --backend jax --device "$DEVICE" --sizes ${ONE_SIZES:-1024 4096} \
+            --cpu-sizes --path-size 0 --repeats 2 --json "$OUTDIR/gpu_jax.json" --solvers \
+            hardwall hardwall_loop adhesive bounded adhesive_load
+        step 75 "GPU/CPU at ${CPU_SIZE}² (NumPy on every core)" $PY benchmarks/gpu.py \
+            --backend jax --device "$DEVICE" --sizes "$CPU_SIZE" --cpu-sizes "$CPU_SIZE" \
+            --cpu-repeats 1 --path-size 0 --repeats 2 --no-footprint \
+            --solvers hardwall adhesive --json "$OUTDIR/gpu_cpu.json"
+        step 45 "gpu.py jax float32 at ${PATH_SIZE}²" $PY benchmarks/gpu.py --backend jax \
+            --device "$DEVICE" --sizes "$PATH_SIZE" --cpu-sizes --path-size 0 --repeats 2 \
+            --dtype float32 --no-footprint --solvers hardwall_loop adhesive \
+            --json "$OUTDIR/gpu_jax32.json"
+        step 50 "41-state path ${PATH_SIZE}² on JAX heights" $PY benchmarks/gpu.py \
+            --backend jax --device "$DEVICE" --sizes --cpu-sizes --path-size "$PATH_SIZE" \
+            --json "$OUTDIR/path_jax.json"
+        step 90 "paper task ${TASK_SIZE}² on $DEVICE, with its analysis" $PY \
+            benchmarks/gpu_task.py --device "$DEVICE" --size "$TASK_SIZE" --json "$OUTDIR/task.json"
+        step 35 "task ${SMALL}² on $DEVICE" $PY benchmarks/gpu_task.py --device "$DEVICE" \
+            --size "$SMALL" --json "$OUTDIR/task_small.json"
+        step 45 "task ${SMALL}² on one CPU core" $PY benchmarks/gpu_task.py --device cpu \
+            --threads 1 --size "$SMALL" --json "$OUTDIR/task_small_cpu.json"
+        $PY benchmarks/gpu_task.py --write-study "$TMP/one.toml" --size "$SMALL"
+        step 45 "study run ${SMALL}² through Dask on $DEVICE" $PY -c \
+            "from roughcontact.cli.main import main; main()" study run "$TMP/one.toml" \
+            -o "$TMP/study" --device "$DEVICE" --workers 1 --no-progress
+        echo "=== done $(date -u)"
+        exit 0
+    fi
     if [ "$PART" = jax ] || [ "$PART" = all ]; then  # issue 38: the compiled loops (JAX)
         step 120 "GPU tests, compiled loops" $PY -m pytest -q -p no:cacheprovider \
             tests/solvers/test_pk_jax.py tests/solvers/test_smooth_jax.py \
