@@ -176,7 +176,8 @@ def _lines(lines) -> list:
 
 
 def _simulation(result, d, dpi, contact_map=None) -> list:
-    from .report import figure_contact_map, simulation_summary
+    from .figures import figure_contact_map
+    from .summaries import simulation_summary
 
     sim, hy = d.get("simulation"), d.get("hysteresis")
     if sim is None:
@@ -217,7 +218,7 @@ def _simulation(result, d, dpi, contact_map=None) -> list:
          "pull-off (Pa)", "dissipated (J/m²)", "jumps", "steps (not converged)", "error"),
         tuple(rows), caption="Per seed, at A_rep = 1 % of A0 on the approach."))  # fmt: skip
     if hy is not None:
-        from .report import hysteresis_summary
+        from .summaries import hysteresis_summary
 
         blocks.append(Para(*_lines(hysteresis_summary(result.hysteresis))))
     return blocks
@@ -230,7 +231,7 @@ def stick_blocks(result, *, dpi: int = 150, figures=None) -> list:
     ``contact_map``) already made, by name (the scan's with :data:`SCAN_PERCENTILES`);
     the others are made here. Every figure is inline as a PNG at ``dpi``.
     """
-    from . import report as _r
+    from . import figures as _r
 
     made = dict(figures or {})
 
