@@ -55,12 +55,12 @@ step() {  # step SECONDS TITLE COMMAND...: run with a limit, log the time it too
     cpu=(--cpu-sizes)
     [ -n "$CPU_SIZE" ] && [ "$PART" != second ] && cpu=(--cpu-sizes "$CPU_SIZE" --cpu-repeats 1)
     if [ "$PART" = one ]; then  # issue 38's item 5 in one call, each step with its limit
-        step 60 "GPU tests: compiled loops, DLPack/CuPy routing" $PY -m pytest -q -n 0 \
+        step 55 "GPU tests: compiled loops, DLPack/CuPy routing" $PY -m pytest -q -n 0 \
             -p no:cacheprovider tests/solvers/test_pk_jax.py tests/solvers/test_smooth_jax.py \
             tests/solvers/test_bounded_jax.py tests/solvers/test_jax_memory.py \
             tests/backends -k "no_host_transfer or same_answer or cupy or dlpack or donat or holds"
         # shellcheck disable=SC2086
-        step 120 "gpu.py jax float64: every compiled loop, per iteration, memory" $PY \
+        step 115 "gpu.py jax float64: every compiled loop, per iteration, memory" $PY \
             benchmarks/gpu.py --backend jax --device "$DEVICE" --sizes ${ONE_SIZES:-1024 4096} \
             --cpu-sizes --path-size 0 --repeats 2 --json "$OUTDIR/gpu_jax.json" --solvers \
             hardwall hardwall_loop adhesive bounded adhesive_load
@@ -75,10 +75,11 @@ step() {  # step SECONDS TITLE COMMAND...: run with a limit, log the time it too
         step 50 "41-state path ${PATH_SIZE}² on JAX heights" $PY benchmarks/gpu.py \
             --backend jax --device "$DEVICE" --sizes --cpu-sizes --path-size "$PATH_SIZE" \
             --json "$OUTDIR/path_jax.json"
-        step 90 "paper task ${TASK_SIZE}² on $DEVICE, with its analysis" $PY \
-            benchmarks/gpu_task.py --device "$DEVICE" --size "$TASK_SIZE" --json "$OUTDIR/task.json"
-        step 35 "task ${SMALL}² on $DEVICE" $PY benchmarks/gpu_task.py --device "$DEVICE" \
-            --size "$SMALL" --json "$OUTDIR/task_small.json"
+        step 100 "paper task ${TASK_SIZE}² on $DEVICE, with its analysis (compiles, then warm)" \
+            $PY benchmarks/gpu_task.py --device "$DEVICE" --size "$TASK_SIZE" --runs 2 \
+            --json "$OUTDIR/task.json"
+        step 40 "task ${SMALL}² on $DEVICE (compiles, then warm)" $PY benchmarks/gpu_task.py \
+            --device "$DEVICE" --size "$SMALL" --runs 2 --json "$OUTDIR/task_small.json"
         step 45 "task ${SMALL}² on one CPU core" $PY benchmarks/gpu_task.py --device cpu \
             --threads 1 --size "$SMALL" --json "$OUTDIR/task_small_cpu.json"
         $PY benchmarks/gpu_task.py --write-study "$TMP/one.toml" --size "$SMALL"
