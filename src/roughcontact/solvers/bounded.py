@@ -59,6 +59,8 @@ from __future__ import annotations
 import math
 import time
 
+from array_api_compat import is_jax_array  # (looks at sys.modules: imports no jax)
+
 from .._backend import (
     array_device,
     array_namespace,
@@ -66,8 +68,6 @@ from .._backend import (
     dtype_name,
     is_numpy_array,
 )
-from ._blocks import Schedule
-from ._bounded_steps import _DeviceSteps
 from ._free_mean import FreeMean
 from ._inplace import Workspace
 from ._projection import _direction_on_device, _projected_gradient_step, project_feasible
@@ -81,7 +81,7 @@ from .fourier import (
 )
 from .inputs import check_hard_wall_offset, check_problem, warm_deflection
 from .line_search import line_minimum
-from .loop_control import RELIABLE_DROP, RELIABLE_EVERY, ReliableUpdates, StallGuard, stopping
+from .loop_control import ReliableUpdates, StallGuard, stopping
 from .observables import make_result
 from .reductions import dot as _dot
 from .reductions import fetch, on_device, vdot, vtotal
@@ -140,6 +140,14 @@ def minimize_energy_bounded(
     -------
     ContactResult
     """
+    if is_jax_array(heights):  # the compiled loop (jax is imported only here)
+        from ._adhesive_jax import minimize_energy_bounded_jax
+
+        return minimize_energy_bounded_jax(
+            heights, substrate, interaction, offset=offset, initial=initial, tol=tol,
+            max_iter=max_iter, callback=callback, restart_every=restart_every,
+            device=device, dtype=dtype, load=load,
+        )  # fmt: skip
     t_start = time.perf_counter()
     h, tol = check_problem(heights, substrate, tol, offset, device, dtype)
     offset = float(offset)
@@ -265,14 +273,6 @@ def minimize_energy_bounded(
         return (w_, kw_, state), [xp.max(xp.abs(state[-1])), count(state[3])]
 
     ahead, guess = None, {}  # the top's state fetched with the line search; speculate's
-    # off NumPy, blocks of device steps between host syncs (:mod:`._bounded_steps`); a
-    # free boundary (gathers on the patch) and a callback (every iteration) stay here
-    blocks, host_step = None, False
-    if dev and patch is None and callback is None:
-        blocks = Schedule()
-        blocks.wait = 1  # the first step often crosses the wall (a projection): on the host
-        stepper = _DeviceSteps(xp, top, green, stiff_single, masked_mean, in_dt, count,
-                               interaction, rigid, es, Workspace(base), zero)  # fmt: skip
     while True:
         if ahead is None:
             gap, mu, active, free, rr = top(w, kw)
@@ -288,7 +288,7 @@ def minimize_energy_bounded(
             message = f"non-finite state at iteration {it} (check inputs and the interaction)"
             break
         if (update := reliable.check(residual, exact)) == "refresh":
-            kw, exact, host_step = stiff(w), True, False
+            kw, exact = stiff(w), True
             continue
         if update == "restart":
             s = None  # the conjugate directions were built on a drifted gradient
@@ -299,31 +299,6 @@ def minimize_energy_bounded(
         if callback is not None and it > 0 and callback(it, residual):
             status, message = SolveStatus.CALLBACK, "stopped by callback"
             break
-        if blocks is not None and not host_step and blocks.ready():
-            # device steps from this top (decided above) until one needs the host
-            refresh_below = max(tol, RELIABLE_DROP * reliable.reliable)
-            # the stall guard cannot stop the solve inside the block (it sees its tops after)
-            stall_left = stall.patience - stall.since - 1 if stall.active else max_iter
-            limit = min(RELIABLE_EVERY - reliable.since, max_iter - it, stall_left)
-            length = blocks.next(limit, residual, refresh_below)
-            st = stepper.state(w, kw, gap, mu, active, free, rr, rr_max, n_free, s, z_old,
-                               gz_old, active_old)  # fmt: skip
-            fresh = s is None or active_old is None
-            st, taken, rr_max, n_free, tops = stepper.block(
-                st, length, it, fresh, restart_every, refresh_below, tops=stall.active
-            )
-            blocks.ran(taken == length, taken, rr_max / es)
-            if taken:
-                for r_top in tops[: taken - 1]:  # the stall guard sees every top
-                    stall(r_top / es)
-                for _ in range(taken):
-                    reliable.step()
-                it, exact = it + taken, False
-                w, kw, gap, mu, active, free, rr, _, _, s, z_old, gz_old, active_old = st
-                ahead = ((gap, mu, active, free, rr), (rr_max, n_free))
-                host_step = taken < length  # a step froze there: the host takes that one
-                continue
-        host_step = False
         it += 1
         reliable.step()
         z = xp.where(free, green(rr), 0.0)

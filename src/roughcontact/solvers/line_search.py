@@ -11,7 +11,7 @@ from .reductions import dot, fetch, on_device, vdot
 from .roots import bracketed_root
 from .smooth_rules import GUESS_MAX, GUESS_MIN, LINE_SEARCH_MAX_EVAL
 
-__all__ = ["device_guess", "line_minimum"]
+__all__ = ["line_minimum"]
 
 
 def _device_guess(interaction, sa, ga, c0, c1, curv, slope0, work):
@@ -36,18 +36,6 @@ def _device_next(xp, hi, f_hi, slope0):
     x = (zero * f_hi - hi * slope0) / xp.where(d != zero, d, one)
     inside = (d != zero) & (x > zero) & (x < hi)  # hi > 0: min(0, hi) = 0
     return xp.where(f_hi < zero, two * hi, xp.where(inside, x, half * (zero + hi)))
-
-
-def device_guess(interaction, gap, s, ks, slope0, work, *, kw=None, elastic_slope=None):
-    """Off NumPy, on every site: :func:`line_minimum`'s first guess along ``s`` from
-    ``gap``, as device scalars with the same values as there: ``(hi, f_hi, p)``, the
-    guess, the slope there and the interaction pressure there. It is taken when
-    ``|f_hi| <= rtol |slope0|``. ``elastic_slope`` (``s.kw``) or ``kw`` as there."""
-    c0 = vdot(s, kw) if elastic_slope is None else elastic_slope
-    curv = vdot(s * s, interaction.curvature(gap))
-    c1 = vdot(s, ks)
-    hi, p, f_hi = _device_guess(interaction, s, gap, c0, c1, curv + c1, slope0, work)
-    return hi, f_hi, p
 
 
 def line_minimum(
