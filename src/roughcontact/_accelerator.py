@@ -10,14 +10,16 @@ wrapped by :func:`routed`, which decides once, before the solve, where it comput
 * Heights of another library that speaks DLPack (CuPy, torch, array_api_strict, ...):
   to the compiled program through :func:`jax.numpy.from_dlpack` (zero-copy where JAX can
   alias the buffer: on a GPU), and the result's fields back through the caller's
-  namespace's ``from_dlpack`` (CuPy in, CuPy fields out), on the caller's device.
+  namespace's ``from_dlpack`` (CuPy in, CuPy fields out), on the caller's device
+  (zero-copy on a GPU; host buffers come back as writable copies).
 * ``device="cuda"`` / ``"cuda:N"``: the compiled program on JAX's CUDA device N
   (``jax.devices("gpu")[N]``); the fields come back as CuPy arrays when CuPy is
   importable (as before the compiled loops), else as JAX arrays on that GPU.
 * What cannot go to the compiled program computes with the NumPy loops on the host, its
   fields returned in the caller's namespace (``xp.asarray``): JAX not installed, a
   namespace whose DLPack export JAX refuses (dask, ...), a free boundary or a
-  ``callback`` (the compiled loops have neither). ``device="cpu"`` always means NumPy.
+  ``callback`` (the compiled loops have neither; a RuntimeWarning says so when the
+  solve was asked of a GPU). ``device="cpu"`` always means NumPy.
 
 A path converts its heights once, at its start; each state's solve then runs on JAX
 arrays with no conversion, and ``progress`` receives each state's result with its
@@ -32,6 +34,7 @@ import dataclasses
 import functools
 import importlib.util
 import sys
+import warnings
 
 import numpy as np
 from array_api_compat import is_jax_array
@@ -250,6 +253,7 @@ def plan(heights, device, compiled: bool) -> _Route | None:
         gpu = jax_gpu(device)
         fields = _gpu_fields()
         if not compiled:  # the NumPy loops, the fields then on that GPU
+            _on_the_host(f"device={device!r}")
             return _numpy_route(lambda a: fields(_to_jax(a, gpu)))
         return _Route(lambda x: _to_jax(x, gpu), fields, _x64, gpu)
     back = _back_to(heights)
@@ -265,7 +269,26 @@ def plan(heights, device, compiled: bool) -> _Route | None:
             target = next(iter(probe.devices()))
             return _Route(lambda x: probe if x is heights else _to_jax(x, target), back, _x64,
                           target)  # fmt: skip
+    if not compiled and _dlpack_device(heights) not in (None, _DLPACK_CPU):
+        _on_the_host(f"heights on a GPU ({type(heights).__module__})")
     return _numpy_route(back)
+
+
+def _dlpack_device(x):
+    try:
+        return x.__dlpack_device__()[0]
+    except Exception:  # noqa: BLE001 - no DLPack at all
+        return None
+
+
+def _on_the_host(what):
+    """Say that a solve asked of a GPU runs on the host (the compiled loops lack an option)."""
+    warnings.warn(
+        f"{what}: the compiled loops have no free boundary and no callback, so this solve "
+        "runs the NumPy loops on the host (its fields are returned on the GPU)",
+        RuntimeWarning,
+        stacklevel=4,
+    )
 
 
 def place(heights, device=None):

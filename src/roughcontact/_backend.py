@@ -1,10 +1,13 @@
 """Array-API plumbing shared by the numerical core.
 
-The core is written against the array API standard (``xp = array_namespace(x)``) so the
-same code runs on NumPy and CuPy.  On NumPy the FFTs go through :mod:`scipy.fft`, which
-is faster than ``numpy.fft`` and accepts ``workers=`` for multithreading; the solvers'
-convolutions (:func:`convolve`) call scipy's pocketfft binding directly, into arrays
-they allocate once.
+The shared numerical pieces (laws, operators, statistics, contact maps) are written
+against the array API standard (``xp = array_namespace(x)``), so they run on NumPy, CuPy,
+JAX and other array-API libraries. The solvers have two backends, NumPy loops for the CPU
+and compiled (JAX) loops for accelerators; :mod:`._accelerator` routes every solve to
+one of them and its result back to the caller's namespace. On NumPy the FFTs go through
+:mod:`scipy.fft`, which is faster than ``numpy.fft`` and accepts ``workers=`` for
+multithreading; the solvers' convolutions (:func:`convolve`) call scipy's pocketfft
+binding directly, into arrays they allocate once.
 """
 
 from __future__ import annotations

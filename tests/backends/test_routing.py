@@ -231,3 +231,15 @@ def test_device_cuda_runs_the_compiled_program_on_the_gpu(law, heights, control)
     else:
         assert isinstance(got.pressure, cupy.ndarray)
     assert rel_l2(got.to_numpy().pressure, ref.pressure) < 1e-6
+
+
+def test_a_gpu_solve_the_compiled_loops_cannot_take_says_it_runs_on_the_host():
+    class OnAGpu(Foreign):  # as a CuPy array reports itself through DLPack
+        def __dlpack_device__(self):
+            return (2, 0)
+
+    law = rc.SmoothLJ93.from_adhesion_length(0.005)
+    ref = rc.solve(H, SUB, law, offset=TOP + 0.6, callback=lambda it, r: False)
+    with pytest.warns(RuntimeWarning, match="runs the NumPy loops on the host"):
+        got = rc.solve(OnAGpu(H), SUB, law, offset=TOP + 0.6, callback=lambda it, r: False)
+    assert type(got.pressure) is Foreign and got.iterations == ref.iterations
