@@ -253,7 +253,7 @@ def plan(heights, device, compiled: bool) -> _Route | None:
         gpu = jax_gpu(device)
         fields = _gpu_fields()
         if not compiled:  # the NumPy loops, the fields then on that GPU
-            _on_the_host(f"device={device!r}")
+            _on_the_host(f"device={device!r}", NO_OPTION)
             return _numpy_route(lambda a: fields(_to_jax(a, gpu)))
         return _Route(lambda x: _to_jax(x, gpu), fields, _x64, gpu)
     back = _back_to(heights)
@@ -269,8 +269,9 @@ def plan(heights, device, compiled: bool) -> _Route | None:
             target = next(iter(probe.devices()))
             return _Route(lambda x: probe if x is heights else _to_jax(x, target), back, _x64,
                           target)  # fmt: skip
-    if not compiled and _dlpack_device(heights) not in (None, _DLPACK_CPU):
-        _on_the_host(f"heights on a GPU ({type(heights).__module__})")
+    if _dlpack_device(heights) not in (None, _DLPACK_CPU):
+        why = None if compiled else NO_OPTION
+        _on_the_host(f"heights on a GPU ({type(heights).__module__})", why)
     return _numpy_route(back)
 
 
@@ -281,11 +282,17 @@ def _dlpack_device(x):
         return None
 
 
-def _on_the_host(what):
-    """Say that a solve asked of a GPU runs on the host (the compiled loops lack an option)."""
+#: Why a solve asked of a GPU may still run on the host (:func:`_on_the_host`).
+NO_OPTION = "the compiled loops have no free boundary and no callback"
+
+
+def _on_the_host(what, why=None):
+    """Say that a solve asked of a GPU runs the NumPy loops on the host, and why: ``why``, or
+    (None) JAX could not take the heights (not installed, or without that GPU's backend)."""
+    why = why or f"JAX could not take them (JAX with CUDA: {JAX_CUDA})"
     warnings.warn(
-        f"{what}: the compiled loops have no free boundary and no callback, so this solve "
-        "runs the NumPy loops on the host (its fields are returned on the GPU)",
+        f"{what}: {why}, so this solve runs the NumPy loops on the host (its fields are "
+        "returned on the GPU)",
         RuntimeWarning,
         stacklevel=4,
     )

@@ -243,3 +243,17 @@ def test_a_gpu_solve_the_compiled_loops_cannot_take_says_it_runs_on_the_host():
     with pytest.warns(RuntimeWarning, match="runs the NumPy loops on the host"):
         got = rc.solve(OnAGpu(H), SUB, law, offset=TOP + 0.6, callback=lambda it, r: False)
     assert type(got.pressure) is Foreign and got.iterations == ref.iterations
+
+
+def test_gpu_heights_jax_cannot_take_are_solved_on_the_host_with_a_warning(monkeypatch):
+    class OnAGpu(Foreign):  # a GPU array this JAX (CPU only) refuses through DLPack
+        def __dlpack_device__(self):
+            return (2, 0)
+
+        def __dlpack__(self, **kwargs):
+            raise BufferError("no CUDA backend")
+
+    ref = rc.solve(H, SUB, rc.HardWall(), load=2e-3)
+    with pytest.warns(RuntimeWarning, match=r"JAX could not take them.*jax\[cuda12\]"):
+        got = rc.solve(OnAGpu(H), SUB, rc.HardWall(), load=2e-3)
+    assert type(got.pressure) is Foreign and got.iterations == ref.iterations
