@@ -20,7 +20,7 @@ State is kept per section and examples are run lazily in order, so running one t
 Skipping is explicit and reported (``-ra``):
 
 * an example that needs a GPU (``device="cuda"``, ``cupy``, ``--device cuda``) is skipped
-  only where CuPy with a CUDA device is unavailable;
+  only where CuPy with a CUDA device, or JAX's CUDA backend, is unavailable;
 * a command with a ``tcp://HOST`` placeholder (a Dask scheduler address to fill in);
 * a block whose first line is ``# not run by the tests: <reason>`` (the reason is
   required, and at most ``MAX_OPT_OUTS`` blocks may opt out).
@@ -259,14 +259,16 @@ SLOW_SECTIONS = {example.section for example in EXAMPLES if _is_demo(example)}
 
 @functools.cache
 def gpu_available() -> bool:
-    """CuPy is importable and sees at least one CUDA device."""
-    if importlib.util.find_spec("cupy") is None:
+    """CuPy is importable and sees at least one CUDA device, and JAX has a CUDA backend
+    (``device="cuda"`` runs the compiled JAX loops there)."""
+    if importlib.util.find_spec("cupy") is None or importlib.util.find_spec("jax") is None:
         return False
     try:
         import cupy
+        import jax
 
-        return cupy.cuda.runtime.getDeviceCount() > 0
-    except Exception:  # no driver, no device, broken install
+        return cupy.cuda.runtime.getDeviceCount() > 0 and bool(jax.devices("gpu"))
+    except Exception:  # no driver, no device, no CUDA backend in JAX, broken install
         return False
 
 
@@ -336,7 +338,7 @@ class SectionRun:
             return f"README.md:{example.block.line}: not run by the tests: {reason}"
         if NEEDS_GPU.search(example.source) and not gpu_available():
             return (
-                f"README.md:{example.line}: needs CuPy and a CUDA GPU "
+                f"README.md:{example.line}: needs CuPy, JAX with CUDA and a CUDA GPU "
                 "(device='cuda' / cupy / --device cuda), not available here"
             )
         if HOST_PLACEHOLDER in example.source:

@@ -1,10 +1,13 @@
 """Array-API plumbing shared by the numerical core.
 
-The core is written against the array API standard (``xp = array_namespace(x)``) so the
-same code runs on NumPy and CuPy.  On NumPy the FFTs go through :mod:`scipy.fft`, which
-is faster than ``numpy.fft`` and accepts ``workers=`` for multithreading; the solvers'
-convolutions (:func:`convolve`) call scipy's pocketfft binding directly, into arrays
-they allocate once.
+The shared numerical pieces (laws, operators, statistics, contact maps) are written
+against the array API standard (``xp = array_namespace(x)``), so they run on NumPy, CuPy,
+JAX and other array-API libraries. The solvers have two backends, NumPy loops for the CPU
+and compiled (JAX) loops for accelerators; :mod:`._accelerator` routes every solve to
+one of them and its result back to the caller's namespace. On NumPy the FFTs go through
+:mod:`scipy.fft`, which is faster than ``numpy.fft`` and accepts ``workers=`` for
+multithreading; the solvers' convolutions (:func:`convolve`) call scipy's pocketfft
+binding directly, into arrays they allocate once.
 """
 
 from __future__ import annotations
@@ -305,39 +308,31 @@ def dtype_name(x) -> str:
 
 
 def _cupy(device: str):
-    """(cupy, GPU index) for ``"cuda"`` / ``"cuda:N"``, or a ParameterError saying why not."""
+    """(cupy, GPU index) for ``"cuda"`` / ``"cuda:N"``, or None when CuPy is not importable
+    or sees no such GPU."""
+    from ._accelerator import device_index
+
+    index = device_index(device)
     try:
         import cupy
-    except ImportError:
-        raise ParameterError(
-            f"device={device!r} needs CuPy and an NVIDIA GPU; install a CuPy wheel that "
-            "matches your CUDA (e.g. pip install 'roughcontact[gpu]'), or use device='cpu'"
-        ) from None
-    try:
+
         count = cupy.cuda.runtime.getDeviceCount()
-    except Exception as err:  # no driver, no device
-        raise ParameterError(f"device={device!r}: no usable CUDA device ({err})") from None
-    index = int(device.partition(":")[2] or 0)
-    if not 0 <= index < count:
-        raise ParameterError(f"device={device!r}: CUDA device index must be in [0, {count - 1}]")
-    return cupy, index
+    except Exception:  # noqa: BLE001 - not installed, no driver, no device
+        return None
+    return (cupy, index) if 0 <= index < count else None
 
 
 def check_device(device: str | None) -> str | None:
     """Validate a device request before any work: None, "cpu", "cuda" or "cuda:N".
 
-    For CUDA devices this imports CuPy and checks that the GPU exists, so that a study
-    or a path fails at once with a clear error rather than in its first solve.
+    A CUDA device means the compiled (JAX) loops on JAX's CUDA device N: this checks that
+    JAX with CUDA is installed (a one-line :class:`ParameterError` saying
+    ``pip install "jax[cuda12]"`` if not), so that a study or a path fails at once with a
+    clear error rather than in its first solve (:func:`._accelerator.check_device`).
     """
-    if device is None or device == "cpu":
-        return device
-    cuda = isinstance(device, str) and (
-        device == "cuda" or (device.startswith("cuda:") and device[5:].isdigit())
-    )
-    if not cuda:
-        raise ParameterError(f"device must be 'cpu', 'cuda' or 'cuda:N', got {device!r}")
-    _cupy(device)
-    return device
+    from ._accelerator import check_device as check
+
+    return check(device)
 
 
 def to_device(x, device: str | None = None, dtype=None):
@@ -348,7 +343,9 @@ def to_device(x, device: str | None = None, dtype=None):
     x : array of any backend, or array-like
     device : {None, "cpu", "cuda", "cuda:N"}
         ``None`` keeps the array where it is (its own namespace); ``"cpu"`` gives NumPy;
-        ``"cuda"`` gives CuPy on the current (``"cuda:N"``: the N-th) GPU.
+        ``"cuda"`` gives CuPy on the current (``"cuda:N"``: the N-th) GPU, or, without
+        CuPy, a JAX array on JAX's CUDA device N (the solvers compute on either with
+        the compiled loops).
     dtype : {None, "float64", "float32"}
         ``None`` keeps a floating array's precision and makes anything else float64.
 
@@ -357,32 +354,30 @@ def to_device(x, device: str | None = None, dtype=None):
     array
         Copied only when the device or the precision changes.
     """
+    from ._accelerator import device_index, place
+
     dtype = check_dtype(dtype)
-    check_device(device)
+    device_index(device)
     if device == "cpu" or (device is None and not is_array(x)):
         x = to_numpy(x) if is_array(x) else np.asarray(x)
     elif device is not None:
-        cupy, index = _cupy(device)
-        with cupy.cuda.Device(index):
-            x = cupy.asarray(x)
+        found = _cupy(device)
+        if found is not None:
+            cupy, index = found
+            with cupy.cuda.Device(index):
+                x = cupy.asarray(x)
+        else:
+            x = place(x, device)  # JAX's GPU (or a one-line error saying what to install)
     xp = array_namespace(x)
     if dtype is None:
         dtype = x.dtype if xp.isdtype(x.dtype, "real floating") else "float64"
     want = getattr(xp, dtype) if isinstance(dtype, str) else dtype
-    return x if x.dtype == want else xp.astype(x, want)
-
-
-def _device_context(heights, device, dtype=None):
-    """The context that makes the computing GPU current (CuPy launches on the current one);
-    for JAX heights the precision's (:func:`jax_precision`)."""
-    if isinstance(device, str) and device.startswith("cuda"):
-        cupy, index = _cupy(device)
-        return cupy.cuda.Device(index)
-    if device is None and is_cupy_array(heights):
-        return heights.device
-    if is_jax_array(heights):
-        return jax_precision(heights, dtype)
-    return contextlib.nullcontext()
+    if x.dtype == want:
+        return x
+    if is_jax_array(x):  # float64 without JAX's global switch (see jax_precision)
+        with jax_precision(x):
+            return xp.astype(x, want)
+    return xp.astype(x, want)
 
 
 def jax_precision(heights, dtype=None):
@@ -410,15 +405,10 @@ def jax_precision(heights, dtype=None):
 
 
 def computes_on_heights_device(solver):
-    """Run ``solver(heights, ..., device=...)`` with the heights' GPU as the current device.
+    """Wrap a public solver with its route to the backend it computes on: NumPy heights
+    on the CPU to the NumPy loops, JAX heights, other libraries' arrays and
+    ``device="cuda"`` to the compiled loops, results back in the caller's namespace
+    (:func:`._accelerator.routed`)."""
+    from ._accelerator import routed
 
-    Without it a solve on ``"cuda:1"`` would launch its kernels on GPU 0. A no-op for
-    NumPy and every other backend.
-    """
-
-    @functools.wraps(solver)
-    def wrapper(heights, *args, device=None, **kwargs):
-        with _device_context(heights, device, kwargs.get("dtype")):
-            return solver(heights, *args, device=device, **kwargs)
-
-    return wrapper
+    return routed(solver)

@@ -153,7 +153,7 @@ def hard_wall_reference(
         ``kappa_rep`` is NaN, and ``converged`` False, if the search did not bracket
         the target within ``max_solves`` solves.
     """
-    from .._backend import to_device
+    from .._accelerator import place
     from ..interactions import HardWall
     from ..solvers import solve
     from ..surfaces.statistics import statistics
@@ -164,7 +164,8 @@ def hard_wall_reference(
     slope = slope if rms_slope is None else positive("rms_slope", rms_slope)
     modulus = substrate.contact_modulus
     states, converged = [], True
-    h = heights if device is None else to_device(heights, device)
+    # moved once (device="cuda": a JAX array on that GPU, the compiled loop's heights)
+    h = place(heights, device)
 
     def run(n):
         nonlocal converged

@@ -156,7 +156,8 @@ def _substrate_options(f):
         _option("--max-iter", default=5000, rng=MAX_ITER,
                 help="Iteration cap per state ({accepted})."),
         _option("--device", default="cpu",
-                help="Where to compute: cpu, cuda or cuda:N (an NVIDIA GPU through CuPy)."),
+                help="Where to compute: cpu, cuda or cuda:N (the compiled JAX loops on an "
+                "NVIDIA GPU; pip install 'jax[cuda12]')."),
         _option("--dtype", type=click.Choice(["float64", "float32"]), default="float64",
                 help="Floating-point precision of the computation."),
     ))  # fmt: skip

@@ -59,9 +59,10 @@ def study():
 @click.option(
     "--device",
     default=None,
-    help="Where the workers compute: cpu (default), cuda or cuda:N (CuPy on a GPU). cuda on "
-    "the local cluster: one worker per visible GPU (CUDA_VISIBLE_DEVICES, else nvidia-smi), "
-    "each pinned to its own; cuda:N: every worker on GPU N.",
+    help="Where the workers compute: cpu (default), cuda or cuda:N (the compiled JAX loops "
+    "on an NVIDIA GPU; pip install 'jax[cuda12]'). cuda on the local cluster: one worker "
+    "per visible GPU (CUDA_VISIBLE_DEVICES, else nvidia-smi), each pinned to its own; "
+    "cuda:N: every worker on GPU N.",
 )
 @click.option(
     "--dashboard",

@@ -1,16 +1,18 @@
 """The Polonsky-Keer iteration as one compiled JAX program (``jax.jit`` + ``lax.while_loop``).
 
-The same constrained conjugate gradients as :mod:`._pk_sparse` and :mod:`._pk_dense`
-(see :mod:`.polonsky_keer` for the method, the residual and the preconditioner), for
-heights given as JAX arrays. The whole loop is one XLA program: the state is a
-:class:`State` record of device arrays, every branch is a ``where`` selection or a
-``lax.cond``, and convergence, the iteration cap, the float32 stall guard, a lost contact
-set and a breakdown are tested on the device at every iteration. Nothing reaches the host
-until the loop ends (tested under ``jax.transfer_guard("disallow")``); the host then reads
-the iterations, residual, status and offset in one transfer. On a GPU the loop therefore
-costs its FFTs and fused elementwise passes, not a kernel launch per array operation.
+The same constrained conjugate gradients as :mod:`._pk_sparse`, the NumPy loop (see
+:mod:`.polonsky_keer` for the method, the residual and the preconditioner): the
+accelerator backend, for heights given as JAX arrays, arrays of other libraries (through
+DLPack) and ``device="cuda"`` (:mod:`roughcontact._accelerator`). The whole loop is one
+XLA program: the state is a :class:`State` record of device arrays, every branch is a
+``where`` selection or a ``lax.cond``, and convergence, the iteration cap, the float32
+stall guard, a lost contact set and a breakdown are tested on the device at every
+iteration. Nothing reaches the host until the loop ends (tested under
+``jax.transfer_guard("disallow")``); the host then reads the iterations, residual, status
+and offset in one transfer. On a GPU the loop therefore costs its FFTs and fused
+elementwise passes, not a kernel launch per array operation.
 
-Differences from the other two loops, all deliberate:
+Differences from the NumPy loop, all deliberate:
 
 * One precision: the convolutions run in the heights' dtype (no float32 increments).
   ``G p - h`` is updated by the step's increment ``-tau G t`` (exact by linearity; ``G t``

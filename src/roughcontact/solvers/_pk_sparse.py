@@ -1,8 +1,9 @@
 """Polonsky-Keer iterations on index arrays of the contact set (NumPy).
 
-The same steps as the full-grid loop in :mod:`._pk_dense` (see :mod:`.polonsky_keer` for
-the method and the residual), with the vector work on index arrays of the contact set:
-a few per cent of the grid at small loads, so cheaper than full-grid passes on a CPU.
+The NumPy (CPU) backend of the hard wall: the same steps as the compiled loop on full-grid
+masks, :mod:`._pk_jax` (see :mod:`.polonsky_keer` for the method and the residual), with
+the vector work on index arrays of the contact set: a few per cent of the grid at small
+loads, so cheaper than full-grid passes on a CPU.
 """
 
 from __future__ import annotations

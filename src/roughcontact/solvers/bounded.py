@@ -35,14 +35,11 @@ updates ``K w`` by increments, which is recomputed exactly in float64 as the res
 falls and before convergence is declared, as in :mod:`.smooth`), and a float64 one on
 projected steps (their energy test needs the exact ``K w``).
 
-Off NumPy (a GPU) the loop is split into init / step / terminate (:mod:`._blocks`,
-:mod:`._bounded_steps`): the common iteration (the line search's Newton guess taken and
-feasible) is a device step without host sync, its scalars (``μ``, inner products,
-``beta``, the largest feasible step) 0-d device arrays; the host reads the state once per
-block of up to 8 steps. An iteration that needs the host (the bracketing line search, a
-projection onto the wall, whose Newton steps read their scalars one transfer each, an
-exact refresh, convergence) freezes the state and the sequential loop takes it: the same
-iterations and values. The energy is evaluated only for the projected steps' test.
+This module is the NumPy (CPU) loop. On accelerators the same method runs as one
+compiled program (:mod:`._bounded_jax`, with the rules of :mod:`.bounded_rules` shared),
+reached by JAX heights, by arrays of other libraries through DLPack and by
+``device="cuda"`` (:mod:`roughcontact._accelerator`). The energy is evaluated only for
+the projected steps' test.
 
 The result's ``pressure`` is the surface traction: the interaction pressure on free
 sites, the elastic pressure (reaction plus adhesion) on the wall. Repulsive sites are
@@ -59,18 +56,17 @@ from __future__ import annotations
 import math
 import time
 
+from array_api_compat import is_jax_array  # (looks at sys.modules: imports no jax)
+
 from .._backend import (
     array_device,
     array_namespace,
     computes_on_heights_device,
     dtype_name,
-    is_numpy_array,
 )
-from ._blocks import Schedule
-from ._bounded_steps import _DeviceSteps
 from ._free_mean import FreeMean
 from ._inplace import Workspace
-from ._projection import _direction_on_device, _projected_gradient_step, project_feasible
+from ._projection import _projected_gradient_step, project_feasible
 from .bounded_rules import ON_WALL, PROJECTED_HALVINGS
 from .fourier import (
     compliance_operator,
@@ -81,10 +77,10 @@ from .fourier import (
 )
 from .inputs import check_hard_wall_offset, check_problem, warm_deflection
 from .line_search import line_minimum
-from .loop_control import RELIABLE_DROP, RELIABLE_EVERY, ReliableUpdates, StallGuard, stopping
+from .loop_control import ReliableUpdates, StallGuard, stopping
 from .observables import make_result
 from .reductions import dot as _dot
-from .reductions import fetch, on_device, vdot, vtotal
+from .reductions import vdot, vtotal
 from .result import SolveStatus
 
 __all__ = ["minimize_energy_bounded", "project_feasible"]
@@ -140,6 +136,14 @@ def minimize_energy_bounded(
     -------
     ContactResult
     """
+    if is_jax_array(heights):  # the compiled loop (jax is imported only here)
+        from ._adhesive_jax import minimize_energy_bounded_jax
+
+        return minimize_energy_bounded_jax(
+            heights, substrate, interaction, offset=offset, initial=initial, tol=tol,
+            max_iter=max_iter, callback=callback, restart_every=restart_every,
+            device=device, dtype=dtype, load=load,
+        )  # fmt: skip
     t_start = time.perf_counter()
     h, tol = check_problem(heights, substrate, tol, offset, device, dtype)
     offset = float(offset)
@@ -187,48 +191,13 @@ def minimize_energy_bounded(
     kw = stiff(w)
     work_load = 0.0 if free_mode is None else free_mode.load  # N: its work N sum(w)
 
-    def energy(w_, kw_):  # a device scalar off NumPy
+    def energy(w_, kw_):
         e = 0.5 * vdot(w_, kw_) + vtotal(interaction.energy(on_patch(base + w_)))
         return e + work_load * vtotal(w_) if work_load else e
 
-    # off NumPy (a GPU) the loop's scalars stay 0-d device arrays and the host reads them
-    # in two transfers per iteration: the residual at the top, and the line search's first
-    # slope with the largest feasible step (each transfer waits for the device)
-    dev, f64 = not is_numpy_array(h), xp.float64
-
-    def in_dt(x):  # a float64 device scalar in the fields' precision (as a Python float)
-        return xp.astype(x, h.dtype) if on_device(x) and x.dtype != h.dtype else x
-
-    counted = []  # the last masks counted, with their counts (each mask is counted 2-3 times)
-
-    def count(mask):
-        """The sites of ``mask`` (a 0-d float64 device array; off NumPy only)."""
-        for seen, k in counted:
-            if seen is mask:  # the same array: the top's free sites, then the state's
-                return k
-        k = xp.sum(xp.astype(mask, f64))
-        counted[:] = [(mask, k), *counted[:1]]  # (keeps the masks alive: ids stay theirs)
-        return k
-
-    # off NumPy the constants of the field operations are arrays made once, of shape (1,)
-    # in the fields' dtype (a Python scalar operand is converted at every use: on
-    # array_api_strict two arrays more per operation), 0-d float64 for the device scalars;
-    # on NumPy the same Python scalars as before
-    zero, zero_i, wall_tol = 0.0, 0, on_wall_tol
-    if dev:
-        zero64, one64 = (xp.asarray(v, dtype=f64, device=array_device(h)) for v in (0.0, 1.0))
-        zero, wall_tol = (xp.full((1,), v, dtype=h.dtype, device=array_device(h))
-                          for v in (0.0, on_wall_tol))  # fmt: skip
-        zero_i = zero
-
-    def masked_mean(x, mask, fallback, k=None):
-        """mean of x over mask, else fallback(): a float on NumPy, off it a device scalar
-        (``k``: the mask's count if known)"""
-        if not dev:
-            return float(xp.mean(x[mask])) if xp.any(mask) else fallback()
-        k = count(mask) if k is None else k
-        mean = xp.sum(xp.where(mask, x, zero), dtype=f64) / xp.maximum(k, one64)
-        return xp.where(k > zero64, mean, fallback())
+    def masked_mean(x, mask, fallback):
+        """mean of x over mask, else fallback()"""
+        return float(xp.mean(x[mask])) if xp.any(mask) else fallback()
 
     s = ks = z_old = None
     gz_old, active_old = 1.0, None
@@ -243,158 +212,78 @@ def minimize_energy_bounded(
         force imbalance ``rr`` of the state ``(w, K w)``."""
         gap = base + w
         r = kw - law(interaction.pressure, gap)
-        on_wall = gap <= wall_tol
+        on_wall = gap <= on_wall_tol
         if patch is not None:
             on_wall = on_wall & patch
         mu = -work_load
         if pin:
-            mean = (lambda: vtotal(r) / n) if dev else (lambda: float(xp.mean(r)))
-            mu = masked_mean(r, ~on_wall, mean)
-        active = on_wall & (r - in_dt(mu) > zero_i)
+            mu = masked_mean(r, ~on_wall, lambda: float(xp.mean(r)))
+        active = on_wall & (r - mu > 0)
         free = ~active
         if pin:
             mu = masked_mean(r, free, lambda: mu)
-        return gap, mu, active, free, xp.where(free, r - in_dt(mu), zero)
+        return gap, mu, active, free, xp.where(free, r - mu, 0.0)
 
-    def speculate(alpha, pressure):
-        """Off NumPy: the state after the line search's first guess, whose residual and
-        free-site count come over in the line search's transfer (one host sync for an
-        iteration that takes the guess, if it stays feasible)."""
-        w_, kw_ = w + in_dt(alpha) * s, kw + in_dt(alpha) * ks
-        state = top(w_, kw_)
-        return (w_, kw_, state), [xp.max(xp.abs(state[-1])), count(state[3])]
-
-    ahead, guess = None, {}  # the top's state fetched with the line search; speculate's
-    # off NumPy, blocks of device steps between host syncs (:mod:`._bounded_steps`); a
-    # free boundary (gathers on the patch) and a callback (every iteration) stay here
-    blocks, host_step = None, False
-    if dev and patch is None and callback is None:
-        blocks = Schedule()
-        blocks.wait = 1  # the first step often crosses the wall (a projection): on the host
-        stepper = _DeviceSteps(xp, top, green, stiff_single, masked_mean, in_dt, count,
-                               interaction, rigid, es, Workspace(base), zero)  # fmt: skip
     while True:
-        if ahead is None:
-            gap, mu, active, free, rr = top(w, kw)
-            if dev:
-                rr_max, n_free = fetch(xp, [xp.max(xp.abs(rr)), count(free)])
-            else:
-                rr_max, n_free = float(xp.max(xp.abs(rr))), None
-        else:
-            ((gap, mu, active, free, rr), (rr_max, n_free)), ahead = ahead, None
-        residual = rr_max / es
+        gap, mu, active, free, rr = top(w, kw)
+        residual = float(xp.max(xp.abs(rr))) / es
         if not math.isfinite(residual):
             status = SolveStatus.NON_FINITE
             message = f"non-finite state at iteration {it} (check inputs and the interaction)"
             break
         if (update := reliable.check(residual, exact)) == "refresh":
-            kw, exact, host_step = stiff(w), True, False
+            kw, exact = stiff(w), True
             continue
         if update == "restart":
             s = None  # the conjugate directions were built on a drifted gradient
-        done = residual <= tol or not (n_free > 0 if dev else bool(xp.any(free)))
+        done = residual <= tol or not bool(xp.any(free))
         if (end := stopping(done, residual, stall, it, max_iter)) is not None:
             status, message = end
             break
         if callback is not None and it > 0 and callback(it, residual):
             status, message = SolveStatus.CALLBACK, "stopped by callback"
             break
-        if blocks is not None and not host_step and blocks.ready():
-            # device steps from this top (decided above) until one needs the host
-            refresh_below = max(tol, RELIABLE_DROP * reliable.reliable)
-            # the stall guard cannot stop the solve inside the block (it sees its tops after)
-            stall_left = stall.patience - stall.since - 1 if stall.active else max_iter
-            limit = min(RELIABLE_EVERY - reliable.since, max_iter - it, stall_left)
-            length = blocks.next(limit, residual, refresh_below)
-            st = stepper.state(w, kw, gap, mu, active, free, rr, rr_max, n_free, s, z_old,
-                               gz_old, active_old)  # fmt: skip
-            fresh = s is None or active_old is None
-            st, taken, rr_max, n_free, tops = stepper.block(
-                st, length, it, fresh, restart_every, refresh_below, tops=stall.active
-            )
-            blocks.ran(taken == length, taken, rr_max / es)
-            if taken:
-                for r_top in tops[: taken - 1]:  # the stall guard sees every top
-                    stall(r_top / es)
-                for _ in range(taken):
-                    reliable.step()
-                it, exact = it + taken, False
-                w, kw, gap, mu, active, free, rr, _, _, s, z_old, gz_old, active_old = st
-                ahead = ((gap, mu, active, free, rr), (rr_max, n_free))
-                host_step = taken < length  # a step froze there: the host takes that one
-                continue
-        host_step = False
         it += 1
         reliable.step()
         z = xp.where(free, green(rr), 0.0)
         if rigid:
-            z = xp.where(free, z - in_dt(masked_mean(z, free, lambda: 0.0)), 0.0)
+            z = xp.where(free, z - masked_mean(z, free, lambda: 0.0), 0.0)
         if free_mode is not None:  # the uniform block on the free sites
             if (z := free_mode.add_on(z, rr, gap, free, it)) is None:
                 status, message = SolveStatus.DETACHED, free_mode.detached
                 break
             z = xp.where(free, z, 0.0)
         restart = s is None or it % restart_every == 0 or active_old is None
-        if dev:
-            s, slope0, gz = _direction_on_device(xp, rr, z, z_old, s, gz_old, restart,
-                                                 active, active_old)  # fmt: skip
-        else:
-            gz = _dot(rr, z)
-            restart = restart or bool(xp.any(active != active_old))
-            restart = restart or gz_old == 0  # no previous direction to conjugate to
-            beta = 0.0 if restart else max(0.0, (gz - _dot(rr, z_old)) / gz_old)  # PR+
-            s = -z + beta * s if beta > 0 else -z
-            slope0 = _dot(rr, s)
-            if slope0 >= 0:
-                s, slope0 = -z, -gz
+        gz = _dot(rr, z)
+        restart = restart or bool(xp.any(active != active_old))
+        restart = restart or gz_old == 0  # no previous direction to conjugate to
+        beta = 0.0 if restart else max(0.0, (gz - _dot(rr, z_old)) / gz_old)  # PR+
+        s = -z + beta * s if beta > 0 else -z
+        slope0 = _dot(rr, s)
+        if slope0 >= 0:
+            s, slope0 = -z, -gz
         z_old, gz_old, active_old = z, gz, active
         ks = stiff_single(s)
         crossing = s < 0 if patch is None else (s < 0) & patch
-        if dev:  # the largest feasible step, brought over with the line search's slope
-            ratio = -gap / xp.where(crossing, s, -1.0)
-            steps = [xp.min(xp.where(crossing, ratio, math.inf))]
         alpha = line_minimum(interaction, gap, s, kw + work_load if work_load else kw, ks,
-                             slope0, work=work,
-                             also=steps if dev else None, speculate=speculate if dev else None,
-                             speculated=guess, next_point=dev)  # fmt: skip
+                             slope0, work=work)  # fmt: skip
         if not math.isfinite(alpha):
             status = SolveStatus.LINE_SEARCH_FAILED
             message = f"line search failed at iteration {it}"
             break
-        if dev:
-            alpha_max = steps[0]
-        else:
-            alpha_max = (
-                float(xp.min(-gap[crossing] / s[crossing])) if xp.any(crossing) else math.inf
-            )
+        alpha_max = float(xp.min(-gap[crossing] / s[crossing])) if xp.any(crossing) else math.inf
         if alpha <= alpha_max:
-            if guess:  # the first guess, feasible: its state and scalars are at hand
-                (w, kw, state), values = guess.pop("state"), guess.pop("values")
-                ahead = (state, values)
-            else:
-                w += alpha * s
-                kw += alpha * ks
+            w += alpha * s
+            kw += alpha * ks
             exact = False
             continue
-        guess.clear()
         e_cur = energy(w, kw)  # (the energy is only needed here)
         # the step crosses the wall: project it, halve it while it does not lower E
         for _ in range(PROJECTED_HALVINGS):
             w_try = project_feasible(w + alpha * s, lower, pin)
             kw_try = stiff(w_try)
             e_try = energy(w_try, kw_try)
-            if dev:  # the next top's scalars come with the energy test (one transfer)
-                state = top(w_try, kw_try)
-                scalars = [
-                    xp.astype(e_try <= e_cur, f64),
-                    xp.max(xp.abs(state[-1])),
-                    count(state[3]),
-                ]
-                lower_e, *values = fetch(xp, scalars)
-                if lower_e:
-                    ahead = (state, values)
-                    break
-            elif bool(e_try <= e_cur):
+            if bool(e_try <= e_cur):
                 break
             alpha *= 0.5
         else:
@@ -418,7 +307,7 @@ def minimize_energy_bounded(
         moved = float(xp.mean(w))
         offset, w = offset + moved, w - moved
     p_int = law(interaction.pressure, gap)
-    traction = on_patch(xp.where(free, p_int, kw - in_dt(mu)))  # none on the padding
+    traction = on_patch(xp.where(free, p_int, kw - mu))  # none on the padding
     return make_result(
         h,
         substrate,

@@ -1,6 +1,6 @@
 """Rules of the bounded (hard-core) minimiser shared by its NumPy loop and its compiled one.
 
-The NumPy/array-API loop (:mod:`.bounded`, with :mod:`._projection`) and the compiled
+The NumPy loop (:mod:`.bounded`, with :mod:`._projection`) and the compiled
 JAX loop (:mod:`._bounded_jax`) take the same steps: these constants are stated once here
 and imported by both (as :mod:`.pk_rules` is for the hard wall and :mod:`.smooth_rules`
 for the smooth minimiser, whose line search both share).

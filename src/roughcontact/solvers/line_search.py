@@ -11,7 +11,7 @@ from .reductions import dot, fetch, on_device, vdot
 from .roots import bracketed_root
 from .smooth_rules import GUESS_MAX, GUESS_MIN, LINE_SEARCH_MAX_EVAL
 
-__all__ = ["device_guess", "line_minimum"]
+__all__ = ["line_minimum"]
 
 
 def _device_guess(interaction, sa, ga, c0, c1, curv, slope0, work):
@@ -26,30 +26,6 @@ def _device_guess(interaction, sa, ga, c0, c1, curv, slope0, work):
     return hi, p, c0 + hi * c1 - vdot(sa, p)
 
 
-def _device_next(xp, hi, f_hi, slope0):
-    """The point :func:`line_minimum` evaluates after a guess ``hi`` not taken, as a device
-    scalar with the host's value: ``2 hi`` (bracketing, ``f_hi < 0``), else the first
-    regula falsi point of ``[0, hi]`` (:func:`.roots.false_position`, as
-    :func:`.roots.bracketed_root` takes it first)."""
-    zero, one, two, half = (constant(v, hi) for v in (0.0, 1.0, 2.0, 0.5))
-    d = f_hi - slope0
-    x = (zero * f_hi - hi * slope0) / xp.where(d != zero, d, one)
-    inside = (d != zero) & (x > zero) & (x < hi)  # hi > 0: min(0, hi) = 0
-    return xp.where(f_hi < zero, two * hi, xp.where(inside, x, half * (zero + hi)))
-
-
-def device_guess(interaction, gap, s, ks, slope0, work, *, kw=None, elastic_slope=None):
-    """Off NumPy, on every site: :func:`line_minimum`'s first guess along ``s`` from
-    ``gap``, as device scalars with the same values as there: ``(hi, f_hi, p)``, the
-    guess, the slope there and the interaction pressure there. It is taken when
-    ``|f_hi| <= rtol |slope0|``. ``elastic_slope`` (``s.kw``) or ``kw`` as there."""
-    c0 = vdot(s, kw) if elastic_slope is None else elastic_slope
-    curv = vdot(s * s, interaction.curvature(gap))
-    c1 = vdot(s, ks)
-    hi, p, f_hi = _device_guess(interaction, s, gap, c0, c1, curv + c1, slope0, work)
-    return hi, f_hi, p
-
-
 def line_minimum(
     interaction,
     gap,
@@ -62,10 +38,8 @@ def line_minimum(
     with_pressure=False,
     work=None,
     elastic_slope=None,
-    also=None,
     speculate=None,
     speculated=None,
-    next_point=False,
 ):
     """Step ``alpha`` minimising E along ``w + alpha s`` (a root of the directional slope).
 
@@ -80,18 +54,13 @@ def line_minimum(
     grid: none on the padding). ``elastic_slope``, when the caller has it, is ``s.kw``
     (then ``kw`` is not read). ``ks`` (``K s``) may be a function of no arguments giving
     it, called once the band and the curvature at alpha = 0 are done (the caller's ``K z``
-    may still be running). ``also``: a list of the caller's device scalars to bring to
-    the host in the line search's first transfer (replaced in place by Python floats).
-    ``speculate(alpha, pressure) -> (state, scalars)`` (device scalars only): the
+    may still be running). Off NumPy (device scalars; the NumPy loops receive only
+    NumPy arrays since the compiled loops serve the other backends, so this is reached
+    only by a direct call): ``speculate(alpha, pressure) -> (state, scalars)`` gives the
     caller's state after the first guess ``alpha``, whose scalars come over in the same
     transfer; if the guess is taken, ``speculated`` (a dict) receives ``"state"`` and
-    ``"values"`` (the scalars as floats). ``next_point`` (off NumPy): the point evaluated
-    after a guess not taken (a doubling, or the first regula falsi point) is computed
-    with the guess, its slope (and ``speculate``'s state there, received as the guess's
-    if it is the step returned) in the same transfer: one host sync where the guess is
-    not taken, for a law evaluation more where it is.
+    ``"values"`` (the scalars as floats).
     """
-    also = [] if also is None else also
     c0 = vdot(s, kw) if elastic_slope is None else elastic_slope
     work = work or Workspace(gap)
     # sites that can feel the interaction for alpha <= 4; the others only matter beyond
@@ -99,19 +68,13 @@ def line_minimum(
     sites = work.band(gap, s, GUESS_MAX, interaction.cutoff) if band else work.patch
     sa, ga = (s, gap) if sites is None else (s[sites], gap[sites])
     last = {}
-    ahead = {}  # off NumPy: the next point's slope, computed with the guess (see below)
 
     def slope(alpha):
-        if ahead and alpha == ahead["alpha"] and sites is ahead["sites"]:
-            last.update(pressure=ahead["pressure"], sites=sites)
-            return ahead["slope"]
         p = interaction.pressure(ga + alpha * sa)
         last.update(pressure=p, sites=sites)
         return c0 + alpha * c1 - dot(sa, p)
 
     def result(alpha):
-        if speculated is not None and ahead and alpha == ahead["alpha"]:
-            speculated.update(state=ahead["state"], values=ahead["values"])
         if not with_pressure:
             return alpha
         if not math.isfinite(alpha):
@@ -131,25 +94,10 @@ def line_minimum(
         hi, p, f_hi = _device_guess(interaction, sa, ga, c0, c1, curv, slope0, work)
         last.update(pressure=p, sites=sites)
         state, guessed = speculate(hi, p) if speculate is not None else (None, [])
-        nexts = []
-        if next_point:  # the next point and its slope (and state) in the same transfer
-            nxt = _device_next(xp, hi, f_hi, slope0)
-            p_nxt = interaction.pressure(ga + work.scalar(nxt, ga) * sa)
-            nexts = [nxt, c0 + nxt * c1 - vdot(sa, p_nxt)]
-            state_nxt, more = speculate(nxt, p_nxt) if speculate is not None else (None, [])
-            nexts += more
-        k, m = len(also), len(guessed)
-        c0, c1, slope0, hi, f_hi, *rest = fetch(xp, [c0, c1, slope0, hi, f_hi, *also, *guessed,
-                                                     *nexts])  # fmt: skip
-        also[:] = rest[:k]
+        c0, c1, slope0, hi, f_hi, *rest = fetch(xp, [c0, c1, slope0, hi, f_hi, *guessed])
         if speculate is not None and abs(f_hi) <= rtol * abs(slope0):
-            speculated.update(state=state, values=rest[k : k + m])
-        if next_point:
-            x_nxt, f_x, *values = rest[k + m :]
-            ahead.update(alpha=x_nxt, slope=f_x, pressure=p_nxt, sites=sites)
-            ahead.update(state=state_nxt, values=values)
+            speculated.update(state=state, values=rest)
     else:
-        also[:] = fetch(work.xp, also)
         hi = -slope0 / curv if curv > 0 else 1.0
         hi = min(max(hi, GUESS_MIN), GUESS_MAX)
         f_hi = slope(hi)

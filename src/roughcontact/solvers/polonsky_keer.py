@@ -68,21 +68,15 @@ says (the residual fell 1000-fold, 50 iterations passed, or the tolerance is met
 convergence is only ever declared on an exact state: the answer is as accurate as a
 float64 solve (tested down to tol 1e-12 against an independent float64 deflection).
 
-Two implementations of the same iteration: on NumPy the vector work runs on index arrays
-of the contact set (a few per cent of the grid at small loads, so cheaper than full-grid
-passes on a CPU); on any other array-API backend (CuPy on a GPU) on full-grid masks
-(:mod:`._pk_dense`), because array-API arrays have no integer-array assignment and a
-GPU does full-grid passes at memory bandwidth. The latter is split into init / step /
-terminate (:mod:`._blocks`): a step makes no host sync (its branches are ``where``
-selections, the projection and the correction's convolution are unconditional) and the
-host reads a few scalars once per block of up to 8 steps; a step whose state needs a host
-decision (an exact refresh, convergence, a lost contact set) leaves it unchanged, so both
-loops take the same steps and report the same iterations (tested).
-
-A third, for heights given as a JAX array: the whole loop as one compiled program
-(:mod:`._pk_jax`, ``jax.jit`` and ``lax.while_loop``; periodic substrates, no callback,
-float64 inside ``jax.enable_x64``), which tests convergence on the device and returns
-to the host only once it stops. jax is imported only when such heights arrive.
+Two implementations of the same iteration, one per backend: on NumPy (the CPU) the
+vector work runs on index arrays of the contact set (:mod:`._pk_sparse`; a few per cent of
+the grid at small loads, so cheaper than full-grid passes on a CPU); on accelerators the
+whole loop is one compiled program (:mod:`._pk_jax`, ``jax.jit`` and ``lax.while_loop``
+on full-grid masks; periodic substrates, no callback, float64 inside
+``jax.enable_x64``), which tests convergence on the device and returns to the host only
+once it stops. JAX heights run it as they are; CuPy and other arrays that speak DLPack,
+and ``device="cuda"``, reach it through :mod:`roughcontact._accelerator`, which returns
+the fields in the caller's namespace. jax is imported only when such heights arrive.
 """
 
 from __future__ import annotations
@@ -103,7 +97,6 @@ from .._backend import (
     to_numpy,
 )
 from .._validate import ParameterError
-from ._pk_dense import iterate_dense
 from ._pk_sparse import iterate_sparse
 from .fourier import compliance_operator, in_precision, stiffness_operator
 from .inputs import check_hard_wall_offset, check_problem, height_statistics
@@ -288,10 +281,7 @@ def polonsky_keer(
 
         p, u, it, residual, status, message, d = iterate_jax(p, problem, substrate)
         return result(p, u, d, it, residual, status, message)
-    if is_numpy_array(h):
-        p, u, it, residual, status, message = iterate_sparse(p, problem, substrate)
-    else:
-        p, u, it, residual, status, message = iterate_dense(p, problem, substrate)
+    p, u, it, residual, status, message = iterate_sparse(p, problem, substrate)
     if u is None:  # the last state was updated incrementally: evaluate it exactly
         u = conv(p)
     c = p > 0

@@ -94,8 +94,10 @@ class ContactResult:
         Mean of the gap over the nominal area (length).
     pressure, gap, deflection : array
         Fields on the grid (pressure units, length, length), arrays of the heights'
-        backend on their device (CuPy arrays for heights on a GPU): a warm start from
-        this record copies nothing. :meth:`to_numpy` gives the record with NumPy fields.
+        namespace on their device (CuPy arrays for CuPy heights, JAX arrays for JAX
+        heights; for ``device="cuda"`` CuPy if importable, else JAX): a warm start from
+        this record on the same device copies nothing. :meth:`to_numpy` gives the
+        record with NumPy fields.
     iterations : int
         Iterations the solver took.
     residual : float

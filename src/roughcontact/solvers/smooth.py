@@ -63,20 +63,10 @@ preconditioner's mean comes from sums it already needs, the line search's elasti
 every full-grid update writes into arrays allocated once per solve (:mod:`._inplace`):
 1.3-1.5x less time per iteration than the same steps with a temporary per expression.
 
-Off NumPy (a GPU) the loop is split into init / step / terminate (:mod:`._blocks`,
-:mod:`._smooth_steps`): the common iteration (the line search's Newton guess taken) is a
-device step that makes no host sync, its scalars (inner products, ``beta``, the slope, the
-rigid mean, the guess) 0-d device arrays and its branches ``where`` selections; the host
-reads the state once per block of up to 8 steps. A step whose state needs the host (the
-guess not taken: the bracketing line search; an exact refresh due; convergence) leaves
-the state unchanged, and the sequential loop takes that iteration: the same iterations
-and values as before. Blocks end before the iterations that refresh the preconditioner's
-stiff sites (the host computes them) and cannot reach a stall guard's patience (the host
-replays the block's residuals through the guards). A free boundary and a ``callback``
-keep the sequential loop, which reads the line search's first guess and slope with the
-residual's extremes of the state that guess gives (one host sync for an accepted guess).
-The interaction is evaluated on every site (a mask, not a gather: CuPy's boolean indexing
-syncs), the 9-3 wall as one fused kernel on CuPy.
+This module is the NumPy (CPU) loop. On accelerators the same method runs as one
+compiled program (:mod:`._smooth_jax`, with the rules of :mod:`.smooth_rules` shared),
+reached by JAX heights, by arrays of other libraries through DLPack and by
+``device="cuda"`` (:mod:`roughcontact._accelerator`).
 
 Convergence measure (``residual``): the largest force imbalance per unit area,
 ``max |K w - p_int(g)|`` (excluding the uniform mode when it is rigid), divided by the
@@ -105,6 +95,8 @@ import functools
 import math
 import time
 
+from array_api_compat import is_jax_array  # (looks at sys.modules: imports no jax)
+
 from .._backend import (
     array_device,
     array_namespace,
@@ -121,15 +113,13 @@ from ._block import (  # noqa: F401 - STIFF_FRACTION, _precondition, _stiff_site
     _precondition,
     _stiff_sites,
 )
-from ._blocks import Schedule
 from ._free_mean import FreeMean
 from ._inplace import Workspace
-from ._smooth_steps import _DeviceSteps
 from .adhesive_rules import floor_verdict, physical_pressure_scale
 from .fourier import compliance_operator, on_work_grid, patch_sites, stiffness_operator
 from .inputs import check_problem, warm_deflection
 from .line_search import line_minimum
-from .loop_control import RELIABLE_DROP, RELIABLE_EVERY, ReliableUpdates, StallGuard, stopping
+from .loop_control import ReliableUpdates, StallGuard, stopping
 from .observables import make_result
 from .reductions import dot as _dot
 from .reductions import fetch, largest, vdot, vtotal
@@ -265,6 +255,14 @@ def minimize_energy(
     -------
     ContactResult
     """
+    if is_jax_array(heights):  # the compiled loop (jax is imported only here)
+        from ._adhesive_jax import minimize_energy_jax
+
+        return minimize_energy_jax(
+            heights, substrate, interaction, offset=offset, initial=initial, tol=tol,
+            max_iter=max_iter, callback=callback, restart_every=restart_every,
+            refresh_every=refresh_every, device=device, dtype=dtype, load=load,
+        )  # fmt: skip
     t_start = time.perf_counter()
     h, tol = check_problem(heights, substrate, tol, offset, device, dtype)
     if int(refresh_every) < 1:
@@ -342,14 +340,6 @@ def minimize_energy(
     extremes, guess = None, {}  # the residual's extremes fetched ahead; speculate's result
     stall = FloorGuard(StallGuard(dtype_name(h)), dtype_name(h), lambda: largest(p_near), es,
                        tol, lambda: physical_pressure_scale(to_numpy(h), substrate, interaction))
-    # off NumPy, blocks of device steps between host syncs (:mod:`._smooth_steps`); a free
-    # boundary (gathers on the patch) and a callback (every iteration) stay here
-    blocks, host_step = None, False
-    if not work.inplace and patch is None and callback is None and not free:
-        blocks = Schedule()
-        stepper = _DeviceSteps(xp, work, interaction, imbalance,
-                               (compliance, elastic_pressure, fast), rigid, es,
-                               LINE_SEARCH_RTOL)  # fmt: skip
     while True:
         # the one host transfer of an iteration besides the line search's (a GPU waits here)
         if extremes is None:
@@ -376,33 +366,6 @@ def minimize_energy(
         if callback is not None and it > 0 and callback(it, residual):
             status, message = SolveStatus.CALLBACK, "stopped by callback"
             break
-        if blocks is not None and not host_step and blocks.ready():
-            # device steps from this top (decided above) until one needs the host; a block
-            # ends before the next refresh of the preconditioner and cannot reach a stall
-            refresh_below = max(tol, RELIABLE_DROP * reliable.reliable)
-            limit = min(RELIABLE_EVERY - reliable.since, max_iter - it, _stall_left(stall),
-                        ((it + 1) // refresh_every + 1) * refresh_every - 1 - it)  # fmt: skip
-            length = blocks.next(limit, residual, refresh_below)
-            if (it + 1) % refresh_every == 0 or (it == 0 and refresh_at_once):
-                stiff, diagonal = _stiff_sites(interaction, gap, self_stiffness, work)
-            restarts = [(not directions and j == 0) or (it + j + 1) % restart_every == 0
-                        for j in range(length)]  # fmt: skip
-            st = stepper.state(gap, kw, gr, p_near, s, ks, z, gz_old)
-            st, taken, gr_max, gr_min, tops = stepper.block(
-                st, stiff, diagonal, restarts, refresh_below, stall.active or stall.stall.active
-            )
-            blocks.ran(taken == length, taken, max(gr_max, -gr_min) / es)
-            if taken:
-                for r_top in tops[: taken - 1]:  # the stall guards see every top
-                    stall(r_top)
-                for _ in range(taken):
-                    reliable.step()
-                it, exact, directions = it + taken, False, True
-                gap, kw, gr, p_near, s, ks, z, gz_old = st
-                extremes = (gr_max, gr_min)
-                host_step = taken < length  # a step froze there: the host takes that one
-                continue
-        host_step = False
         it += 1
         reliable.step()
         restart = not directions or it % restart_every == 0
@@ -485,11 +448,3 @@ def minimize_energy(
         repulsive=xp.reshape(rep, shape),
         attractive=xp.reshape(att, shape),
     )
-
-
-def _stall_left(stall) -> int:
-    """Iterations a block may take without either stall guard of ``stall`` (a
-    :class:`FloorGuard`) reaching its patience (it sees the block's tops afterwards)."""
-    left = FLOOR_PATIENCE - stall.since - 1 if stall.active else 1 << 30
-    inner = stall.stall
-    return min(left, inner.patience - inner.since - 1 if inner.active else left)

@@ -69,10 +69,16 @@ def solve(
     callback : callable, optional
         ``callback(iteration, residual)``; return True to stop early.
     device : {None, "cpu", "cuda", "cuda:N"}, optional
-        Where to compute: ``None`` computes where ``heights`` live (pass CuPy arrays to
-        compute on a GPU), ``"cuda"`` moves them to the GPU first. The result record's
-        fields stay there (``result.to_numpy()`` copies them to the host). See
-        :func:`roughcontact.to_device`.
+        Where to compute: ``None`` computes where ``heights`` live: NumPy heights with
+        the NumPy loops on the CPU; JAX heights, and arrays of other libraries that speak
+        DLPack (CuPy, torch, ...), with the compiled (JAX) loops on their device, the
+        result's fields returned in the heights' namespace. ``"cpu"``: the NumPy loops,
+        NumPy fields. ``"cuda"`` / ``"cuda:N"``: the compiled loops on JAX's CUDA device N
+        (needs ``pip install "jax[cuda12]"``); fields as CuPy arrays when CuPy is
+        importable, else JAX arrays on that GPU. A free boundary or a ``callback``, which
+        the compiled loops lack, runs the NumPy loops on the host (fields returned the
+        same way; a RuntimeWarning says so when the solve was asked of a GPU).
+        ``result.to_numpy()`` copies the fields to the host.
     dtype : {None, "float64", "float32"}, optional
         Precision of the computation; default float64. float32 halves memory and FFT
         time; its accuracy floor (measured) is in the README.
