@@ -54,38 +54,42 @@ step() {  # step SECONDS TITLE COMMAND...: run with a limit, log the time it too
     $PY -c "import jax; print('jax', jax.__version__, jax.devices())"
     cpu=(--cpu-sizes)
     [ -n "$CPU_SIZE" ] && [ "$PART" != second ] && cpu=(--cpu-sizes "$CPU_SIZE" --cpu-repeats 1)
-    if [ "$PART" = one ]; then  # issue 38's item 5 in one call, each step with its limit
-        step 55 "GPU tests: compiled loops, DLPack/CuPy routing" $PY -m pytest -q -n 0 \
-            -p no:cacheprovider tests/solvers/test_pk_jax.py tests/solvers/test_smooth_jax.py \
-            tests/solvers/test_bounded_jax.py tests/solvers/test_jax_memory.py \
-            tests/backends -k "no_host_transfer or same_answer or cupy or dlpack or donat or holds"
+    if [ "$PART" = one ]; then  # issue 38's item 5 in one call (limits sum to 510 s),
+        # the steps in the order of what matters most, each with its own limit
+        step 50 "GPU tests: compiled loops, memory, DLPack/CuPy routing" $PY -m pytest -q \
+            -n 0 -p no:cacheprovider tests/solvers/test_pk_jax.py \
+            tests/solvers/test_smooth_jax.py tests/solvers/test_bounded_jax.py \
+            tests/solvers/test_jax_memory.py tests/backends/test_routing.py \
+            tests/backends/test_cupy.py -k "no_host_transfer or same_answer or gpu or cupy or \
+            dlpack or holds or donated or cuda"
         # shellcheck disable=SC2086
-        step 115 "gpu.py jax float64: every compiled loop, per iteration, memory" $PY \
+        step 100 "gpu.py jax float64: every compiled loop, per iteration, memory" $PY \
             benchmarks/gpu.py --backend jax --device "$DEVICE" --sizes ${ONE_SIZES:-1024 4096} \
             --cpu-sizes --path-size 0 --repeats 2 --json "$OUTDIR/gpu_jax.json" --solvers \
-            hardwall hardwall_loop adhesive bounded adhesive_load
-        step 75 "GPU/CPU at ${CPU_SIZE}² (NumPy on every core)" $PY benchmarks/gpu.py \
-            --backend jax --device "$DEVICE" --sizes "$CPU_SIZE" --cpu-sizes "$CPU_SIZE" \
-            --cpu-repeats 1 --path-size 0 --repeats 2 --no-footprint \
-            --solvers hardwall adhesive --json "$OUTDIR/gpu_cpu.json"
-        step 45 "gpu.py jax float32 at ${PATH_SIZE}²" $PY benchmarks/gpu.py --backend jax \
+            hardwall_loop adhesive bounded
+        step 45 "41-state path ${PATH_SIZE}² on JAX heights" $PY benchmarks/gpu.py \
+            --backend jax --device "$DEVICE" --sizes --cpu-sizes --path-size "$PATH_SIZE" \
+            --json "$OUTDIR/path_jax.json"
+        step 85 "paper task ${TASK_SIZE}² on $DEVICE, with its analysis (compiles, then warm)" \
+            $PY benchmarks/gpu_task.py --device "$DEVICE" --size "$TASK_SIZE" --runs 2 \
+            --json "$OUTDIR/task.json"
+        step 35 "gpu.py jax float32 at ${PATH_SIZE}²" $PY benchmarks/gpu.py --backend jax \
             --device "$DEVICE" --sizes "$PATH_SIZE" --cpu-sizes --path-size 0 --repeats 2 \
             --dtype float32 --no-footprint --solvers hardwall_loop adhesive \
             --json "$OUTDIR/gpu_jax32.json"
-        step 50 "41-state path ${PATH_SIZE}² on JAX heights" $PY benchmarks/gpu.py \
-            --backend jax --device "$DEVICE" --sizes --cpu-sizes --path-size "$PATH_SIZE" \
-            --json "$OUTDIR/path_jax.json"
-        step 100 "paper task ${TASK_SIZE}² on $DEVICE, with its analysis (compiles, then warm)" \
-            $PY benchmarks/gpu_task.py --device "$DEVICE" --size "$TASK_SIZE" --runs 2 \
-            --json "$OUTDIR/task.json"
-        step 40 "task ${SMALL}² on $DEVICE (compiles, then warm)" $PY benchmarks/gpu_task.py \
+        step 60 "GPU/CPU at ${CPU_SIZE}² (NumPy on every core)" $PY benchmarks/gpu.py \
+            --backend jax --device "$DEVICE" --sizes "$CPU_SIZE" --cpu-sizes "$CPU_SIZE" \
+            --cpu-repeats 1 --path-size 0 --repeats 2 --no-footprint \
+            --solvers hardwall adhesive --json "$OUTDIR/gpu_cpu.json"
+        step 35 "task ${SMALL}² on $DEVICE (compiles, then warm)" $PY benchmarks/gpu_task.py \
             --device "$DEVICE" --size "$SMALL" --runs 2 --json "$OUTDIR/task_small.json"
         step 45 "task ${SMALL}² on one CPU core" $PY benchmarks/gpu_task.py --device cpu \
             --threads 1 --size "$SMALL" --json "$OUTDIR/task_small_cpu.json"
         $PY benchmarks/gpu_task.py --write-study "$TMP/one.toml" --size "$SMALL"
-        step 45 "study run ${SMALL}² through Dask on $DEVICE" $PY -c \
+        step 35 "study run ${SMALL}² through Dask on $DEVICE" $PY -c \
             "from roughcontact.cli.main import main; main()" study run "$TMP/one.toml" \
             -o "$TMP/study" --device "$DEVICE" --workers 1 --no-progress
+        [ "$DEVICE" != cpu ] && step 20 "CuPy in, CuPy out (DLPack)" $PY benchmarks/gpu_routing.py
         echo "=== done $(date -u)"
         exit 0
     fi
