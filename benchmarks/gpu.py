@@ -297,7 +297,8 @@ def bench_path(n: int, args, device: str) -> dict:
         import jax
         import jax.numpy as jnp
 
-        h_dev = jax.device_put(jnp.asarray(h, dtype=args.dtype), _jax_device(device, args.dtype))
+        dev = _jax_device(device, args.dtype)  # x64 first: then asarray keeps float64
+        h_dev = jax.device_put(jnp.asarray(h, dtype=args.dtype), dev)
         d_hw = rc.solve(h_dev, sub, rc.HardWall(), load=args.end_load).offset  # untimed
     else:
         h_dev = rc.to_device(h, device, args.dtype)
