@@ -5,10 +5,11 @@ heights (:mod:`._adhesive_jax`, the same method and rules), a periodic substrate
 mean (and for a law without hard core a load within :data:`ONE_MINIMISATION_LOADS` physical
 pressure scales), the load goes inside the one minimisation (:mod:`._free_mean`: the uniform
 mode of the gap is free and its force is the load not carried; on the wall the multiplier is
-the load): about the cost of an offset-controlled solve (1.1-3x cold, 1.0-1.5x a warm path
-step, against 10-30x for the search below: benchmarks/README.md). Where that fails (a
-non-finite state, a failed line search), and for every other case, the root search over
-nested solves below.
+the load): about the cost of an offset-controlled solve (cold from 128² on started from the
+2x2-coarsened grid's state, :func:`_coarse_start`: 0.5-1.5x its iterations at 128²-256²;
+1.1-1.5x a warm path step; against 10-30x for the search below: benchmarks/README.md).
+Where that fails (a non-finite state, a failed line search), and for every other case, the
+root search over nested solves below.
 
 Why the nested search cost 10-30x (measured, 128²-256², ℓa 0.005 and 0.05, load 1e-3 and
 0): 16-30 inner solves per load (about 9 while the bracket's step doubles from 0.01 rms,
