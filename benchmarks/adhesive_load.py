@@ -3,7 +3,10 @@
 Two parts, both on the issue's surface ``self_affine((n, n), hurst=0.8, rms_slope=0.1,
 short_cutoff=4, seed=7)`` (E* = 1, a0 = 1) with ``SmoothLJ93.from_adhesion_length(la)``:
 
-* **cold cases**: ``rc.solve(h, sub, law, load=N)`` from the undeformed substrate, then the
+* **cold cases**: ``rc.solve(h, sub, law, load=N)`` from the undeformed substrate (from 128²
+  on it starts from the same load solved on the 2x2-coarsened grid: those iterations are
+  printed beside the fine grid's, and the time ratio includes them; ``--no-coarse-start``
+  turns that start off for the A/B), then the
   offset-controlled cold solve at the offset it found (the same state: the largest gap
   difference is printed), and with ``--nested`` the root search over nested
   offset-controlled solves that load control used before (forced by passing a minimiser that
