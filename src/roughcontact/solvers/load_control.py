@@ -80,7 +80,8 @@ def _one_minimisation(minimize, heights, substrate) -> bool:
 
 def _coarse_start(minimize, heights, substrate, interaction, load, tol, max_iter, dtype):
     """Nested iteration of a cold solve in the one minimisation: ``(offset, deflection,
-    iterations)`` of the same load solved on the grid coarsened 2x2, or None.
+    iterations)`` of the same load solved on the grid coarsened 2x2 (offset and deflection
+    None when that solve did not converge), or None where it does not apply.
 
     The coarse problem: 2x2 block means of the heights on the substrate's ``coarsened()``
     twin (twice the pixel size; the same continuum problem at half the resolution), solved
@@ -88,8 +89,8 @@ def _coarse_start(minimize, heights, substrate, interaction, load, tol, max_iter
     :data:`.adhesive_rules.NESTED_TOL`; its deflection copied to each block's four sites
     (the same mean, on the heights' device) and its offset start the fine solve, which
     then corrects the state at its own scale. One level only and only where
-    :func:`.adhesive_rules.nests` says (why: there); None also when the coarse solve did
-    not converge (the fine solve then starts cold). Cold from first contact the offset has
+    :func:`.adhesive_rules.nests` says (why: there); a coarse solve that did not converge
+    leaves the fine solve its cold start. Cold from first contact the offset has
     to travel about one rms height while the contacts form one after another; on the
     coarse grid that costs a quarter (measured in benchmarks/README.md).
     """
@@ -107,7 +108,7 @@ def _coarse_start(minimize, heights, substrate, interaction, load, tol, max_iter
             tol=max(NESTED_TOL, tol), max_iter=max_iter, callback=None, dtype=dtype, load=load,
         )  # fmt: skip
     if not res.converged:
-        return None
+        return None, None, int(res.iterations)
     w = xp.reshape(res.deflection, (mx, 1, my, 1))  # on the heights' device
     fine = xp.reshape(xp.broadcast_to(w, (mx, 2, my, 2)), (nx, ny))
     return float(res.offset), fine, int(res.iterations)
@@ -169,8 +170,8 @@ def solve_at_load(
         else:
             status = SolveStatus.CONVERGED if converged else failure
         if total["coarse"]:  # iterations counts this grid's; the coarse work is said here
-            message += (f"; started from the 2x2-coarsened grid's state ({total['coarse']} "
-                        "iterations there)")
+            message += (f"; nested iteration: {total['coarse']} iterations on the "
+                        "2x2-coarsened grid first")
         return dataclasses.replace(
             res,
             iterations=total["it"],
@@ -192,11 +193,13 @@ def solve_at_load(
         # the load inside the one minimisation (:mod:`._free_mean`): the cost of an
         # offset-controlled solve; the nested search below only where it fails
         def run(target, start, init):
-            if init is None and (coarse := _coarse_start(minimize, heights, substrate,
-                                                         interaction, target, tol, max_iter,
-                                                         dtype)) is not None:  # fmt: skip
-                # nested iteration (cold: from the coarse grid's state)
-                start, init, total["coarse"] = coarse[0], coarse[1], total["coarse"] + coarse[2]
+            # nested iteration (cold: from the coarse grid's state, if that converged)
+            if init is None and (coarse := _coarse_start(
+                    minimize, heights, substrate, interaction, target, tol, max_iter,
+                    dtype)) is not None:  # fmt: skip
+                total["coarse"] += coarse[2]
+                if coarse[0] is not None:
+                    start, init = coarse[0], coarse[1]
             with checked_heights(heights, stats), carrying(target):
                 res = minimize(
                     heights, substrate, interaction, offset=start, initial=init, tol=tol,
