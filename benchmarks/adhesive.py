@@ -423,6 +423,7 @@ def main(argv=None) -> int:
             out["load_control"] = adhesive_load.run(
                 args.sizes, args.adhesion_lengths, args.lc_loads, args.lc_path_loads, 1e-8,
                 args.max_iter, args.nested, log=lambda s: print(s, flush=True),
+                coarse_start=not args.no_coarse_start,
             )  # fmt: skip
     print("# summary (t/step: median over the steps; Adh/rc, tm/rc: the peer's t/step / ours)")
     print(SUMMARY_HEADER)

@@ -3,7 +3,10 @@
 Two parts, both on the issue's surface ``self_affine((n, n), hurst=0.8, rms_slope=0.1,
 short_cutoff=4, seed=7)`` (E* = 1, a0 = 1) with ``SmoothLJ93.from_adhesion_length(la)``:
 
-* **cold cases**: ``rc.solve(h, sub, law, load=N)`` from the undeformed substrate, then the
+* **cold cases**: ``rc.solve(h, sub, law, load=N)`` from the undeformed substrate (from 128²
+  on it starts from the same load solved on the 2x2-coarsened grid: those iterations are
+  printed beside the fine grid's, and the time ratio includes them; ``--no-coarse-start``
+  turns that start off for the A/B), then the
   offset-controlled cold solve at the offset it found (the same state: the largest gap
   difference is printed), and with ``--nested`` the root search over nested
   offset-controlled solves that load control used before (forced by passing a minimiser that
@@ -67,6 +70,32 @@ def _nested(h, sub, law, load, tol, max_iter):
     return res, inner["solves"]
 
 
+class _CoarseCount:
+    """Counts the iterations of the nested iteration's coarse solves (load_control's
+    ``_coarse_start``: ``result.iterations`` counts the fine grid's, as the hard wall's
+    nested iteration does); ``enabled=False`` turns the nested start off (the A/B)."""
+
+    def __init__(self, enabled=True):
+        import importlib
+
+        self.lc = importlib.import_module("roughcontact.solvers.load_control")
+        self.enabled, self.iterations = enabled, 0
+
+    def __enter__(self):
+        self.original = self.lc._coarse_start
+
+        def counting(*args, **kwargs):
+            out = self.original(*args, **kwargs) if self.enabled else None
+            self.iterations += 0 if out is None else out[2]
+            return out
+
+        self.lc._coarse_start = counting
+        return self
+
+    def __exit__(self, *exc):
+        self.lc._coarse_start = self.original
+
+
 def _row(kind, res, seconds, extra=""):
     p = float(np.abs(res.pressure).max())
     return (
@@ -82,7 +111,7 @@ COLD_HEADER = (
 
 
 def cold_cases(sizes, adhesion_lengths, loads, tol, max_iter, nested, log=print,
-               law_name="lj93smooth"):
+               law_name="lj93smooth", coarse_start=True):
     """The issue's cold cases: one dict per (n, la, load)."""
     import roughcontact as rc
 
@@ -95,10 +124,13 @@ def cold_cases(sizes, adhesion_lengths, loads, tol, max_iter, nested, log=print,
             law = make_law(law_name, la)
             for load in loads:
                 log(f"# n={n} {law_name} la={la:g} load={load:g}")
-                t0 = time.perf_counter()
-                res = rc.solve(h, sub, law, load=load, tol=tol, max_iter=max_iter)
-                t_load = time.perf_counter() - t0
-                log(_row("  load control", res, t_load))
+                with _CoarseCount(coarse_start) as coarse:
+                    t0 = time.perf_counter()
+                    res = rc.solve(h, sub, law, load=load, tol=tol, max_iter=max_iter)
+                    t_load = time.perf_counter() - t0
+                log(_row("  load control", res, t_load,
+                         f"+ {coarse.iterations} its on the coarse grid" if coarse.iterations
+                         else ""))  # fmt: skip
                 t0 = time.perf_counter()
                 same = rc.solve(h, sub, law, offset=res.offset, tol=tol, max_iter=max_iter)
                 t_off = time.perf_counter() - t0
@@ -113,6 +145,7 @@ def cold_cases(sizes, adhesion_lengths, loads, tol, max_iter, nested, log=print,
                     offset_iterations=same.iterations, offset_seconds=t_off,
                     same_state_max_gap_difference=gap,
                     ratio=res.iterations / max(same.iterations, 1),
+                    coarse_iterations=coarse.iterations, time_ratio=t_load / t_off,
                 )  # fmt: skip
                 if nested:
                     t0 = time.perf_counter()
@@ -121,7 +154,8 @@ def cold_cases(sizes, adhesion_lengths, loads, tol, max_iter, nested, log=print,
                     log(_row("  nested root search", old, t_old, f"{solves} inner solves"))
                     row.update(nested_iterations=old.iterations, nested_seconds=t_old,
                                nested_solves=solves, nested_status=old.status.value)  # fmt: skip
-                log(f"  ratio load/offset iterations {row['ratio']:.2f}")
+                log(f"  ratio load/offset iterations {row['ratio']:.2f} (this grid's), "
+                    f"time {row['time_ratio']:.2f} (coarse solve included)")
                 out.append(row)
     return out
 
@@ -176,19 +210,24 @@ def add_arguments(ap, prefix=""):
                     help="the load-controlled path's loads (mean pressure / E*)")  # fmt: skip
     ap.add_argument("--nested", action="store_true",
                     help="also time the nested root search (the method before)")  # fmt: skip
+    ap.add_argument("--no-coarse-start", action="store_true",
+                    help="cold load-controlled solves without the nested iteration's coarse "
+                    "start (the method before it: A/B)")  # fmt: skip
 
 
 def run(sizes, adhesion_lengths, loads, path_loads, tol, max_iter, nested, log=print,
-        law_name="lj93smooth"):
+        law_name="lj93smooth", coarse_start=True):
     """Both parts; a 16² path first (untimed) loads what a first path imports."""
     import roughcontact as rc
 
     h = issue_surface(16)
     law = rc.SmoothLJ93.from_adhesion_length(0.05)
     rc.approach_retract(h, rc.Substrate((16, 16)), law, loads=[0.0, 1e-3], retract=False)
-    cold = cold_cases(sizes, adhesion_lengths, loads, tol, max_iter, nested, log, law_name)
+    cold = cold_cases(sizes, adhesion_lengths, loads, tol, max_iter, nested, log, law_name,
+                      coarse_start)  # fmt: skip
     path_loads = np.asarray(path_loads, dtype=float)
-    path = paths(sizes, adhesion_lengths, path_loads, tol, max_iter, log, law_name)
+    with _CoarseCount(coarse_start):
+        path = paths(sizes, adhesion_lengths, path_loads, tol, max_iter, log, law_name)
     return dict(cold=cold, paths=path)
 
 
@@ -205,7 +244,7 @@ def main(argv=None) -> int:
     args = ap.parse_args(argv)
     out = run(args.sizes, args.adhesion_lengths, args.loads, args.path_loads, args.tol,
               args.max_iter, args.nested, log=lambda s: print(s, flush=True),
-              law_name=args.law)  # fmt: skip
+              law_name=args.law, coarse_start=not args.no_coarse_start)  # fmt: skip
     if args.json:
         import json
 

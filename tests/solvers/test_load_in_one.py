@@ -99,3 +99,38 @@ def test_hard_core_load_in_one_minimisation(load):
     )  # fmt: skip
     assert nested.converged and nested.offset == pytest.approx(res.offset, abs=1e-6)
     assert nested.iterations > 3 * res.iterations
+
+
+@pytest.mark.parametrize(("la", "load"), [(0.005, 0.0), (0.05, 1e-3)])
+def test_cold_load_control_starts_from_the_coarse_grid(monkeypatch, la, load):
+    # nested iteration (adhesive_rules.NESTED_MIN_SIZE, 128² and up): measured 112 -> 52
+    # iterations here (+59 on 64²) at la 0.005, load 0, against 49 offset-controlled;
+    # 64 -> 29 (+39) against 55 at la 0.05 (benchmarks/README.md)
+    h, sub, law = _problem(128, la)
+    res = rc.solve(h, sub, law, load=load)
+    assert res.converged and abs(res.load - load) <= res.tol, res.message
+    assert "coarsened grid" in res.message  # the coarse work is said
+    same = rc.solve(h, sub, law, offset=res.offset)
+    assert same.converged and np.abs(same.gap - res.gap).max() < 1e-6
+    assert res.iterations <= 1.5 * same.iterations, (res.iterations, same.iterations)
+    # the same state as the cold start on this grid alone, which costs more here
+    rules = importlib.import_module("roughcontact.solvers.adhesive_rules")
+    assert rules.nests((128, 128)) and not rules.nests((64, 64)) and not rules.nests((130, 127))
+    monkeypatch.setattr(load_control, "nests", lambda shape: False)
+    alone = rc.solve(h, sub, law, load=load)
+    assert alone.converged and "coarsened" not in alone.message
+    assert np.abs(alone.gap - res.gap).max() < 1e-6
+    assert alone.offset == pytest.approx(res.offset, abs=1e-6)
+    assert alone.iterations > 1.2 * res.iterations, (alone.iterations, res.iterations)
+
+
+def test_hard_core_cold_load_control_starts_from_the_coarse_grid(monkeypatch):
+    # the bounded solver's free mode takes the same nested start (measured at 128², la 0.005,
+    # load 0: 31 -> 29 iterations here against 17 offset-controlled; 256²: 65 -> 54 vs 23)
+    h, sub, _ = _problem(128, 0.005)
+    law = rc.Exponential(work_of_adhesion=0.005, range=1.0)
+    res = rc.solve(h, sub, law, load=0.0)
+    assert res.converged and abs(res.load) <= res.tol and "coarsened grid" in res.message
+    monkeypatch.setattr(load_control, "nests", lambda shape: False)
+    alone = rc.solve(h, sub, law, load=0.0)
+    assert alone.converged and np.abs(alone.gap - res.gap).max() < 1e-6

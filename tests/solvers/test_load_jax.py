@@ -199,3 +199,14 @@ def test_float32_load_control(x32, law):
     assert res.pressure.dtype == jnp.float32 and abs(res.load - 1e-3) <= 2 * res.tol
     assert res.iterations <= 1.25 * ref.iterations + 1
     assert rel_l2(res.pressure, np.asarray(ref.pressure, dtype=float)) <= 1e-3
+
+
+def test_the_coarse_start_in_the_compiled_loop(x64):
+    # nested iteration of a cold load-controlled solve (load_control._coarse_start, 128²
+    # and up): the compiled loop solves the coarse grid too, with the NumPy loop's answers
+    h, sub = surface(128)
+    ref = rc.solve(h, sub, LAW, load=0.0)
+    res = rc.solve(jnp.asarray(h), sub, LAW, load=0.0)
+    assert "coarsened grid" in ref.message and "coarsened grid" in res.message
+    agree(res, ref, 0.0)
+    assert isinstance(res.pressure, jax.Array)

@@ -21,7 +21,10 @@ Cost (iterations, cold from first contact, ``benchmarks/adhesive_load.py``): 1.1
 offset-controlled cold solve ending in the same state at ℓa 0.05 (128², 256²), 1.3-2x at
 ℓa 0.005 up to 64², 2.1-3.5x at 128²-256²: the offset has to travel from first contact
 (about one rms height) while the contacts form one after another, where the offset-
-controlled solve starts at its offset. A warm path step costs 1.0-1.4x an offset step.
+controlled solve starts at its offset. From 128² on a cold solve therefore starts from the
+same load solved on the 2x2-coarsened grid (:func:`.load_control._coarse_start`): 0.5-1.5x
+the offset-controlled solve's iterations on the fine grid, 0.6-1.4x its time at 256² with
+the coarse solve. A warm path step costs 1.1-1.5x an offset step.
 The nested root search it replaces took 10-30x.
 
 The compiled loops (:mod:`._smooth_jax`, :mod:`._bounded_jax`) take the same method with

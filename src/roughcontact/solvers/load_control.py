@@ -5,10 +5,11 @@ heights (:mod:`._adhesive_jax`, the same method and rules), a periodic substrate
 mean (and for a law without hard core a load within :data:`ONE_MINIMISATION_LOADS` physical
 pressure scales), the load goes inside the one minimisation (:mod:`._free_mean`: the uniform
 mode of the gap is free and its force is the load not carried; on the wall the multiplier is
-the load): about the cost of an offset-controlled solve (1.1-3x cold, 1.0-1.5x a warm path
-step, against 10-30x for the search below: benchmarks/README.md). Where that fails (a
-non-finite state, a failed line search), and for every other case, the root search over
-nested solves below.
+the load): about the cost of an offset-controlled solve (cold from 128² on started from the
+2x2-coarsened grid's state, :func:`_coarse_start`: 0.5-1.5x its iterations at 128²-256²;
+1.1-1.5x a warm path step; against 10-30x for the search below: benchmarks/README.md).
+Where that fails (a non-finite state, a failed line search), and for every other case, the
+root search over nested solves below.
 
 Why the nested search cost 10-30x (measured, 128²-256², ℓa 0.005 and 0.05, load 1e-3 and
 0): 16-30 inner solves per load (about 9 while the bracket's step doubles from 0.01 rms,
@@ -42,8 +43,14 @@ import dataclasses
 import math
 import time
 
-from .._backend import dtype_name, is_numpy_array
-from .adhesive_rules import carrying, lowest_smooth_offset, physical_pressure_scale
+from .._backend import array_namespace, dtype_name, is_numpy_array
+from .adhesive_rules import (
+    NESTED_TOL,
+    carrying,
+    lowest_smooth_offset,
+    nests,
+    physical_pressure_scale,
+)
 from .inputs import check_problem, checked_heights, height_statistics
 from .result import SolveStatus
 from .roots import false_position, illinois
@@ -69,6 +76,42 @@ def _one_minimisation(minimize, heights, substrate) -> bool:
     numpy = minimize in (minimize_energy, minimize_energy_bounded) and is_numpy_array(heights)
     return ((numpy or getattr(minimize, "takes_load", False)) and periodic
             and substrate.rigid_mean)  # fmt: skip
+
+
+def _coarse_start(minimize, heights, substrate, interaction, load, tol, max_iter, dtype):
+    """Nested iteration of a cold solve in the one minimisation: ``(offset, deflection,
+    iterations)`` of the same load solved on the grid coarsened 2x2 (offset and deflection
+    None when that solve did not converge), or None where it does not apply.
+
+    The coarse problem: 2x2 block means of the heights on the substrate's ``coarsened()``
+    twin (twice the pixel size; the same continuum problem at half the resolution), solved
+    cold by ``minimize`` (the same loop, NumPy or compiled) to
+    :data:`.adhesive_rules.NESTED_TOL`; its deflection copied to each block's four sites
+    (the same mean, on the heights' device) and its offset start the fine solve, which
+    then corrects the state at its own scale. One level only and only where
+    :func:`.adhesive_rules.nests` says (why: there); a coarse solve that did not converge
+    leaves the fine solve its cold start. Cold from first contact the offset has
+    to travel about one rms height while the contacts form one after another; on the
+    coarse grid that costs a quarter (measured in benchmarks/README.md).
+    """
+    if not nests(heights.shape) or not hasattr(substrate, "coarsened"):
+        return None
+    xp = array_namespace(heights)
+    nx, ny = heights.shape
+    mx, my = nx // 2, ny // 2
+    coarse = xp.mean(xp.reshape(heights, (mx, 2, my, 2)), axis=(1, 3))
+    eq = interaction.equilibrium_distance or 0.0  # None: hard core
+    start = float(xp.max(coarse)) + eq
+    with carrying(load):
+        res = minimize(
+            coarse, substrate.coarsened(), interaction, offset=start, initial=None,
+            tol=max(NESTED_TOL, tol), max_iter=max_iter, callback=None, dtype=dtype, load=load,
+        )  # fmt: skip
+    if not res.converged:
+        return None, None, int(res.iterations)
+    w = xp.reshape(res.deflection, (mx, 1, my, 1))  # on the heights' device
+    fine = xp.reshape(xp.broadcast_to(w, (mx, 2, my, 2)), (nx, ny))
+    return float(res.offset), fine, int(res.iterations)
 
 
 def solve_at_load(
@@ -97,7 +140,7 @@ def solve_at_load(
     stats = height_statistics(h)
     scale = max(stats["std"], substrate.pixel_size)
     states: dict[float, object] = {}
-    total = {"it": 0}
+    total = {"it": 0, "coarse": 0}  # iterations here; on the coarsened grid (nested)
 
     def evaluate(d):
         near = min(states, key=lambda x: abs(x - d)) if states else None
@@ -126,6 +169,9 @@ def solve_at_load(
             status = res.status
         else:
             status = SolveStatus.CONVERGED if converged else failure
+        if total["coarse"]:  # iterations counts this grid's; the coarse work is said here
+            message += (f"; nested iteration: {total['coarse']} iterations on the "
+                        "2x2-coarsened grid first")
         return dataclasses.replace(
             res,
             iterations=total["it"],
@@ -147,6 +193,13 @@ def solve_at_load(
         # the load inside the one minimisation (:mod:`._free_mean`): the cost of an
         # offset-controlled solve; the nested search below only where it fails
         def run(target, start, init):
+            # nested iteration (cold: from the coarse grid's state, if that converged)
+            if init is None and (coarse := _coarse_start(
+                    minimize, heights, substrate, interaction, target, tol, max_iter,
+                    dtype)) is not None:  # fmt: skip
+                total["coarse"] += coarse[2]
+                if coarse[0] is not None:
+                    start, init = coarse[0], coarse[1]
             with checked_heights(heights, stats), carrying(target):
                 res = minimize(
                     heights, substrate, interaction, offset=start, initial=init, tol=tol,
