@@ -17,9 +17,11 @@
 #   PART=jax benchmarks/gpu_check.sh                # issue 38 (<= 9 min): the compiled
 #                                                   # loops' tests, float64/float32 sizes
 #                                                   # (GPU/CPU at CPU_SIZE), JAX path
-#   PART=one benchmarks/gpu_check.sh              # every figure of issue 38's item 5 in
-#                                                   # one call of <= 9 min (the session's
-#                                                   # whole device budget is 15 min)
+#   PART=one benchmarks/gpu_check.sh              # issue 38's item 5 in one call of
+#                                                   # <= 8 min (a session's whole device
+#                                                   # budget is 15 min), then PART=two
+#                                                   # (<= 6 min): GPU/CPU at CPU_SIZE² and
+#                                                   # the Dask study
 # Two device calls of <= 9 minutes: PART=jax, then PART=second (the paper task and the
 # 512² task on the GPU; PART=all adds the 512² task on one CPU core and the Dask study).
 set -u -o pipefail
@@ -54,9 +56,21 @@ step() {  # step SECONDS TITLE COMMAND...: run with a limit, log the time it too
     $PY -c "import jax; print('jax', jax.__version__, jax.devices())"
     cpu=(--cpu-sizes)
     [ -n "$CPU_SIZE" ] && [ "$PART" != second ] && cpu=(--cpu-sizes "$CPU_SIZE" --cpu-repeats 1)
-    if [ "$PART" = one ]; then  # issue 38's item 5 in one call (limits sum to 510 s),
+    if [ "$PART" = two ]; then  # the second call: GPU/CPU at CPU_SIZE², the Dask study
+        step 300 "GPU/CPU at ${CPU_SIZE}² (NumPy on every core)" $PY benchmarks/gpu.py \
+            --backend jax --device "$DEVICE" --sizes "$CPU_SIZE" --cpu-sizes "$CPU_SIZE" \
+            --cpu-repeats 1 --path-size 0 --repeats 2 --no-footprint \
+            --solvers hardwall adhesive --json "$OUTDIR/gpu_cpu.json"
+        $PY benchmarks/gpu_task.py --write-study "$TMP/one.toml" --size "$SMALL"
+        step 60 "study run ${SMALL}² through Dask on $DEVICE" $PY -c \
+            "from roughcontact.cli.main import main; main()" study run "$TMP/one.toml" \
+            -o "$TMP/study" --device "$DEVICE" --workers 1 --no-progress
+        echo "=== done $(date -u)"
+        exit 0
+    fi
+    if [ "$PART" = one ]; then  # issue 38's item 5 in one call (limits sum to 460 s),
         # the steps in the order of what matters most, each with its own limit
-        step 50 "GPU tests: compiled loops, memory, DLPack/CuPy routing" $PY -m pytest -q \
+        step 75 "GPU tests: compiled loops, memory, DLPack/CuPy routing" $PY -m pytest -q \
             -n 0 -p no:cacheprovider tests/solvers/test_pk_jax.py \
             tests/solvers/test_smooth_jax.py tests/solvers/test_bounded_jax.py \
             tests/solvers/test_jax_memory.py tests/backends/test_routing.py \
@@ -67,7 +81,7 @@ step() {  # step SECONDS TITLE COMMAND...: run with a limit, log the time it too
             benchmarks/gpu.py --backend jax --device "$DEVICE" --sizes ${ONE_SIZES:-1024 4096} \
             --cpu-sizes --path-size 0 --repeats 2 --json "$OUTDIR/gpu_jax.json" --solvers \
             hardwall_loop adhesive bounded
-        step 45 "41-state path ${PATH_SIZE}² on JAX heights" $PY benchmarks/gpu.py \
+        step 60 "41-state path ${PATH_SIZE}² on JAX heights" $PY benchmarks/gpu.py \
             --backend jax --device "$DEVICE" --sizes --cpu-sizes --path-size "$PATH_SIZE" \
             --json "$OUTDIR/path_jax.json"
         step 85 "paper task ${TASK_SIZE}² on $DEVICE, with its analysis (compiles, then warm)" \
@@ -77,19 +91,12 @@ step() {  # step SECONDS TITLE COMMAND...: run with a limit, log the time it too
             --device "$DEVICE" --sizes "$PATH_SIZE" --cpu-sizes --path-size 0 --repeats 2 \
             --dtype float32 --no-footprint --solvers hardwall_loop adhesive \
             --json "$OUTDIR/gpu_jax32.json"
-        step 60 "GPU/CPU at ${CPU_SIZE}² (NumPy on every core)" $PY benchmarks/gpu.py \
-            --backend jax --device "$DEVICE" --sizes "$CPU_SIZE" --cpu-sizes "$CPU_SIZE" \
-            --cpu-repeats 1 --path-size 0 --repeats 2 --no-footprint \
-            --solvers hardwall adhesive --json "$OUTDIR/gpu_cpu.json"
         step 35 "task ${SMALL}² on $DEVICE (compiles, then warm)" $PY benchmarks/gpu_task.py \
             --device "$DEVICE" --size "$SMALL" --runs 2 --json "$OUTDIR/task_small.json"
         step 45 "task ${SMALL}² on one CPU core" $PY benchmarks/gpu_task.py --device cpu \
             --threads 1 --size "$SMALL" --json "$OUTDIR/task_small_cpu.json"
-        $PY benchmarks/gpu_task.py --write-study "$TMP/one.toml" --size "$SMALL"
-        step 35 "study run ${SMALL}² through Dask on $DEVICE" $PY -c \
-            "from roughcontact.cli.main import main; main()" study run "$TMP/one.toml" \
-            -o "$TMP/study" --device "$DEVICE" --workers 1 --no-progress
-        [ "$DEVICE" != cpu ] && step 20 "CuPy in, CuPy out (DLPack)" $PY benchmarks/gpu_routing.py
+        [ "$DEVICE" != cpu ] && step 25 "CuPy in, CuPy out (DLPack)" $PY benchmarks/gpu_routing.py \
+            --repeats 3
         echo "=== done $(date -u)"
         exit 0
     fi

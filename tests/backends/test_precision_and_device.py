@@ -42,6 +42,20 @@ def test_float32_agrees_with_float64(name, law, control):
     assert abs(got.repulsive_area - ref.repulsive_area) <= 2.0 / N**2
 
 
+def test_float32_default_tolerance_grows_beyond_1024_squared():
+    """Measured on an H200: at 4096² the float32 residual floor is 1.0e-6 to 1.3e-6, so the
+    1e-6 of smaller grids stalled; the default there is 4e-6 (float64 keeps 1e-8)."""
+    from roughcontact.solvers.inputs import DEFAULT_TOL, default_tolerance
+
+    assert default_tolerance("float32", 256 * 256) == DEFAULT_TOL["float32"] == 1e-6
+    assert default_tolerance("float32", 1024 * 1024) == 1e-6
+    assert default_tolerance("float32", 2048 * 2048) == pytest.approx(2e-6)
+    assert default_tolerance("float32", 4096 * 4096) == pytest.approx(4e-6)
+    assert default_tolerance("float64", 4096 * 4096) == 1e-8
+    got = rc.solve(H, SUB, rc.HardWall(), load=1e-3, dtype="float32", tol=1e-6)
+    assert got.tol == 1e-6  # an explicit tolerance is kept (>= 1e-6)
+
+
 def test_float32_rejects_a_tolerance_below_its_floor():
     with pytest.raises(rc.ParameterError, match=r"tol must be >= 1e-06 with dtype='float32'"):
         rc.solve(H, SUB, rc.HardWall(), load=1e-3, dtype="float32", tol=1e-8)

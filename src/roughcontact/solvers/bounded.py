@@ -117,7 +117,8 @@ def minimize_energy_bounded(
         as for :func:`.smooth.minimize_energy`).
     tol : float, optional
         Tolerance on the largest free-site force imbalance / E*.
-        Default 1e-8 (float64) or 1e-6 (float32, also the smallest allowed there).
+        Default 1e-8 (float64) or 1e-6 (float32, also the smallest allowed there;
+        larger beyond 1024²: :func:`roughcontact.solvers.inputs.default_tolerance`).
     max_iter : int
         Iteration cap; reaching it returns ``converged=False``.
     callback : callable, optional

@@ -24,6 +24,7 @@ __all__ = [
     "check_hard_wall_offset",
     "check_problem",
     "checked_heights",
+    "default_tolerance",
     "height_statistics",
     "lowest_hard_wall_offset",
     "warm_deflection",
@@ -34,6 +35,26 @@ __all__ = [
 #: (measured: the residuals of all three solvers stall at 3e-7 to 6e-7 in single
 #: precision; see the README).
 DEFAULT_TOL = {"float64": 1e-8, "float32": 1e-6}
+#: Grids up to this many sites get :data:`DEFAULT_TOL`; in float32 the default grows
+#: beyond (:func:`default_tolerance`).
+FLOAT32_TOL_SITES = 1 << 20
+
+
+def default_tolerance(precision: str, sites: int) -> float:
+    """The tolerance a solve gets when none is given (the residual: max force imbalance /
+    E*, dimensionless).
+
+    float64: :data:`DEFAULT_TOL`. float32: 1e-6 on grids up to 1024² and
+    ``1e-6 * sqrt(sites / 1024²)`` beyond (4e-6 at 4096²), because the rounding floor of
+    the residual grows with the grid: measured 3e-7 to 6e-7 at 256² and 1.0e-6 to 1.3e-6
+    at 4096² (the hard wall and the 9-3 wall, one NVIDIA H200), where 1e-6 then stalled.
+    The square root is our rule (rounding that adds up over the sites like a random walk),
+    not measured beyond 4096²; it keeps a margin of 3x over the 4096² floor. An explicit
+    ``tol`` in float32 only has to be at least 1e-6.
+    """
+    if precision != "float32" or sites <= FLOAT32_TOL_SITES:
+        return DEFAULT_TOL[precision]
+    return DEFAULT_TOL["float32"] * math.sqrt(sites / FLOAT32_TOL_SITES)
 
 
 #: The heights a caller has checked already (see :func:`checked_heights`).
@@ -75,8 +96,8 @@ def check_problem(heights, substrate, tol, offset=None, device=None, dtype=None)
 
     The heights come back on ``device`` in ``dtype`` (float64 unless ``"float32"`` is
     asked for; NumPy heights contiguous) and the solvers then compute there. ``tol``
-    None gives :data:`DEFAULT_TOL` for that precision; in float32 a tolerance below its
-    floor is rejected (it could never be met).
+    None gives :func:`default_tolerance` for that precision and grid; in float32 a tolerance
+    below 1e-6 is rejected (it could never be met).
     """
     if heights is _CHECKED.get():  # checked by the caller (see checked_heights)
         h = to_device(heights, device, dtype or "float64")
@@ -93,7 +114,7 @@ def check_problem(heights, substrate, tol, offset=None, device=None, dtype=None)
         raise ParameterError(f"offset must be finite, got {offset!r}")
     precision = dtype_name(h)
     if tol is None:
-        return h, DEFAULT_TOL[precision]
+        return h, default_tolerance(precision, math.prod(h.shape))
     return h, tolerance("tol", tol, precision, DEFAULT_TOL["float32"])
 
 

@@ -195,7 +195,8 @@ def polonsky_keer(
         Warm start (its pressure; rescaled to ``load`` under load control).
     tol : float, optional
         Tolerance on the residual defined in the module docstring.
-        Default 1e-8 (float64) or 1e-6 (float32, also the smallest allowed there).
+        Default 1e-8 (float64) or 1e-6 (float32, also the smallest allowed there;
+        larger beyond 1024²: :func:`roughcontact.solvers.inputs.default_tolerance`).
     max_iter : int
         Iteration cap; reaching it gives ``converged=False``.
     callback : callable, optional

@@ -232,7 +232,8 @@ def minimize_energy(
         padding).
     tol : float, optional
         Tolerance on ``max |K w - p_int| / E*`` (see module docstring).
-        Default 1e-8 (float64) or 1e-6 (float32, also the smallest allowed there).
+        Default 1e-8 (float64) or 1e-6 (float32, also the smallest allowed there;
+        larger beyond 1024²: :func:`roughcontact.solvers.inputs.default_tolerance`).
     max_iter : int
         Iteration cap; reaching it returns ``converged=False``.
     callback : callable, optional

@@ -63,7 +63,8 @@ def solve(
         solve computes on).
     tol : float, optional
         Convergence tolerance (the solver's measure; see its documentation), in (0, 1).
-        Default 1e-8 (float64) or 1e-6 (float32, also the smallest allowed there).
+        Default 1e-8 (float64) or 1e-6 (float32, also the smallest allowed there;
+        larger beyond 1024²: :func:`roughcontact.solvers.inputs.default_tolerance`).
     max_iter : int
         Iteration cap (>= 1); a solve that reaches it returns ``converged=False``.
     callback : callable, optional
