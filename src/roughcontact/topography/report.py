@@ -1,5 +1,6 @@
 """The answer of :func:`roughcontact.stick` in words, figures and a report folder (the
-text lives in :mod:`.summaries`, the figures in :mod:`.figures`; their names are kept here).
+text lives in :mod:`roughcontact.topography.summaries`, the figures in
+:mod:`roughcontact.topography.figures`; their names are kept here).
 
 * :func:`summary` -- a few lines: the verdict, the margin measured and extrapolated, what
   is measured and what extrapolated, and the scale the verdict depends on;
