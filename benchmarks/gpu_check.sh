@@ -22,8 +22,10 @@
 #                                                   # budget is 15 min), then PART=two
 #                                                   # (<= 6 min): GPU/CPU at CPU_SIZE² and
 #                                                   # the Dask study
-# Two device calls of <= 9 minutes: PART=jax, then PART=second (the paper task and the
-# 512² task on the GPU; PART=all adds the 512² task on one CPU core and the Dask study).
+# The two device calls to make: PART=one, then PART=two (PART=one ran 2026-11-27 on an
+# H200, see benchmarks/README.md; PART=two has not run on a GPU yet). The older split,
+# PART=jax + PART=second (the paper task and the 512² task on the GPU; PART=all adds the
+# 512² task on one CPU core and the Dask study), measures the same with wider limits.
 set -u -o pipefail
 export PYTHONUNBUFFERED=1
 PY=${PY:-python3}
