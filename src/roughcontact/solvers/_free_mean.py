@@ -34,6 +34,8 @@ the same rules (:mod:`.adhesive_rules`' scalar functions on 0-d device arrays) i
 
 from __future__ import annotations
 
+import numpy as np
+
 from .._validate import ParameterError
 from . import adhesive_rules as rules
 
@@ -45,26 +47,26 @@ class FreeMean:
 
     def __init__(self, load, interaction, substrate, heights, work):
         self.load, self.law, self.substrate, self.work = float(load), interaction, substrate, work
-        self.reach = max(float(work.xp.std(heights)), substrate.pixel_size)
+        self.reach = max(float(np.std(heights)), substrate.pixel_size)
         self.k_u, self.detached = None, None
         self.peak = rules.attraction_peak_gap(interaction) if self.load < 0 else 0.0
 
     @classmethod
     def of(cls, load, interaction, substrate, heights, work, periodic_rigid):
-        """The free mode for ``load`` (None: offset control, no free mode); it needs NumPy
-        (``work.inplace``) and a periodic substrate with a rigid mean."""
+        """The free mode for ``load`` (None: offset control, no free mode); it needs a
+        periodic substrate with a rigid mean."""
         if load is None:
             return None
-        if not (periodic_rigid and work.inplace):
+        if not periodic_rigid:
             raise ParameterError(
-                "load in minimize_energy needs NumPy heights on a periodic substrate with a "
-                "rigid mean (else solve(load=...) takes the nested search)"
+                "load in minimize_energy needs a periodic substrate with a rigid mean "
+                "(else solve(load=...) takes the nested search)"
             )
         return cls(load, interaction, substrate, heights, work)
 
     def mean_free(self, gr):
         """``gr - mean(gr)``: what the block preconditioner takes."""
-        return gr - self.work.xp.mean(gr)
+        return gr - np.mean(gr)
 
     def add(self, z, gr, gap, it, refresh_every):
         """``z`` with its uniform block (:func:`add_uniform`); ``k_u`` refreshed with the
@@ -82,13 +84,12 @@ class FreeMean:
         the mean of ``rr`` over the ``free`` sites over ``k_u``
         (:func:`.adhesive_rules.wall_uniform_stiffness`; bounded; on the wall's active face
         the caller zeroes it). None, with ``detached``, as in :meth:`add`."""
-        xp = self.work.xp
         if self._lost(gap, it):
             return None
-        n_free, sub = int(xp.count_nonzero(free)), self.substrate
+        n_free, sub = int(np.count_nonzero(free)), self.substrate
         k_u = rules.wall_uniform_stiffness(1.0 - n_free / free.shape[0], sub.self_stiffness,
                                            sub.contact_modulus, max(sub.shape) * sub.pixel_size)
-        mean = float(xp.sum(rr)) / max(n_free, 1)  # rr is 0 off the free sites
+        mean = float(np.sum(rr)) / max(n_free, 1)  # rr is 0 off the free sites
         return z + float(rules.uniform_shift(mean, k_u, self.reach))
 
     def _lost(self, gap, it) -> bool:
@@ -96,7 +97,7 @@ class FreeMean:
         ``detached`` says so."""
         if self.load >= 0:
             return False
-        min_gap = float(self.work.xp.min(gap))
+        min_gap = float(np.min(gap))
         if not rules.tension_lost(self.law, self.load, min_gap, self.peak):
             return False
         self.detached = (
@@ -108,17 +109,16 @@ class FreeMean:
 
     def moved(self, offset, gap, base):
         """The offset and ``base`` (``d - h``) of the final gap: moved with its mean."""
-        shift = float(self.work.xp.mean(gap - base))
+        shift = float(np.mean(gap - base))
         return offset + shift, base + shift
 
 
 def uniform_stiffness(interaction, gap, substrate, work) -> float:
     """``k_u`` (pressure/length) of the state ``gap`` by the shared rule
     :func:`.adhesive_rules.uniform_stiffness` (module docstring)."""
-    xp = work.xp
     near = work.interacting(gap, interaction.cutoff)
     curvature = interaction.curvature(gap if near is None else gap[near])
-    total = float(xp.sum(xp.where(curvature > 0, curvature, 0.0)))
+    total = float(np.sum(np.where(curvature > 0, curvature, 0.0)))
     size = max(substrate.shape) * substrate.pixel_size
     return rules.uniform_stiffness(total / gap.shape[0], substrate.contact_modulus, size)
 
@@ -130,5 +130,5 @@ def add_uniform(z, gr, k_u, reach, work):
     ``K z`` holds for the sum (``K`` has no uniform mode).
 
     The shift and its bound are :func:`.adhesive_rules.uniform_shift`'s."""
-    z += float(rules.uniform_shift(float(work.xp.mean(gr)), k_u, reach))
+    z += float(rules.uniform_shift(float(np.mean(gr)), k_u, reach))
     return z

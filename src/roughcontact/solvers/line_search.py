@@ -4,26 +4,13 @@ from __future__ import annotations
 
 import math
 
-from .._backend import constant
 from ._inplace import Workspace
 from .bounded_rules import BOUNDED_LINE_SEARCH_RTOL
-from .reductions import dot, fetch, on_device, vdot
+from .reductions import dot
 from .roots import bracketed_root
 from .smooth_rules import GUESS_MAX, GUESS_MIN, LINE_SEARCH_MAX_EVAL
 
 __all__ = ["line_minimum"]
-
-
-def _device_guess(interaction, sa, ga, c0, c1, curv, slope0, work):
-    """The Newton guess ``hi`` of :func:`line_minimum` with the curvature ``curv`` at
-    alpha = 0, the interaction pressure ``p`` there and the slope ``f_hi``: device scalars."""
-    xp = work.xp
-    zero, one = constant(0.0, curv), constant(1.0, curv)  # made once (see constant)
-    convex = curv > zero
-    hi = xp.where(convex, -slope0 / xp.where(convex, curv, one), one)
-    hi = xp.minimum(xp.maximum(hi, constant(GUESS_MIN, curv)), constant(GUESS_MAX, curv))
-    p = interaction.pressure(ga + work.scalar(hi, ga) * sa)
-    return hi, p, c0 + hi * c1 - vdot(sa, p)
 
 
 def line_minimum(
@@ -54,14 +41,11 @@ def line_minimum(
     grid: none on the padding). ``elastic_slope``, when the caller has it, is ``s.kw``
     (then ``kw`` is not read). ``ks`` (``K s``) may be a function of no arguments giving
     it, called once the band and the curvature at alpha = 0 are done (the caller's ``K z``
-    may still be running). Off NumPy (device scalars; the NumPy loops receive only
-    NumPy arrays since the compiled loops serve the other backends, so this is reached
-    only by a direct call): ``speculate(alpha, pressure) -> (state, scalars)`` gives the
-    caller's state after the first guess ``alpha``, whose scalars come over in the same
-    transfer; if the guess is taken, ``speculated`` (a dict) receives ``"state"`` and
-    ``"values"`` (the scalars as floats).
+    may still be running). NumPy arrays (the compiled loops' line search is
+    :func:`roughcontact.solvers._smooth_jax.line_minimum`). ``speculate`` and
+    ``speculated`` are accepted and ignored (they served the retired device loops).
     """
-    c0 = vdot(s, kw) if elastic_slope is None else elastic_slope
+    c0 = dot(s, kw) if elastic_slope is None else elastic_slope
     work = work or Workspace(gap)
     # sites that can feel the interaction for alpha <= 4; the others only matter beyond
     band = math.isfinite(interaction.cutoff)
@@ -84,23 +68,12 @@ def line_minimum(
 
     # Newton guess with the curvature at alpha = 0 (ks is asked for last: the caller may
     # still be computing it)
-    curv = vdot(sa * sa, interaction.curvature(ga))
-    c1 = vdot(s, ks() if callable(ks) else ks)
+    curv = dot(sa * sa, interaction.curvature(ga))
+    c1 = dot(s, ks() if callable(ks) else ks)
     curv = curv + c1
-    if on_device(curv):
-        # a GPU: the guess and the slope there as device scalars, to the host in one
-        # transfer with the line's other scalars (one host sync for an accepted guess)
-        xp = work.xp
-        hi, p, f_hi = _device_guess(interaction, sa, ga, c0, c1, curv, slope0, work)
-        last.update(pressure=p, sites=sites)
-        state, guessed = speculate(hi, p) if speculate is not None else (None, [])
-        c0, c1, slope0, hi, f_hi, *rest = fetch(xp, [c0, c1, slope0, hi, f_hi, *guessed])
-        if speculate is not None and abs(f_hi) <= rtol * abs(slope0):
-            speculated.update(state=state, values=rest)
-    else:
-        hi = -slope0 / curv if curv > 0 else 1.0
-        hi = min(max(hi, GUESS_MIN), GUESS_MAX)
-        f_hi = slope(hi)
+    hi = -slope0 / curv if curv > 0 else 1.0
+    hi = min(max(hi, GUESS_MIN), GUESS_MAX)
+    f_hi = slope(hi)
     lo, f_lo = 0.0, slope0
     n_eval = 1
     if abs(f_hi) <= rtol * abs(slope0):

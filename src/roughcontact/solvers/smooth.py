@@ -95,20 +95,13 @@ import functools
 import math
 import time
 
+import numpy as np
 from array_api_compat import is_jax_array  # (looks at sys.modules: imports no jax)
 
-from .._backend import (
-    array_device,
-    array_namespace,
-    computes_on_heights_device,
-    dtype_name,
-    overlaps_fft,
-    to_numpy,
-)
+from .._backend import computes_on_heights_device, dtype_name, overlaps_fft
 from .._validate import ParameterError
 from ._block import (  # noqa: F401 - STIFF_FRACTION, _precondition, _stiff_sites: public here
     STIFF_FRACTION,
-    _direction_on_device,
     _direction_stiffness,
     _precondition,
     _stiff_sites,
@@ -122,7 +115,7 @@ from .line_search import line_minimum
 from .loop_control import ReliableUpdates, StallGuard, stopping
 from .observables import make_result
 from .reductions import dot as _dot
-from .reductions import fetch, largest, vdot, vtotal
+from .reductions import largest, total
 from .result import SolveStatus
 from .smooth_rules import EPS64 as _EPS64
 from .smooth_rules import (  # the rules shared with the compiled loop (:mod:`._smooth_jax`)
@@ -193,7 +186,7 @@ def _local(evaluate, cutoff, gap):
     if not math.isfinite(cutoff):
         return evaluate(gap)
     inside = gap < cutoff
-    out = array_namespace(gap).zeros_like(gap)
+    out = np.zeros_like(gap)
     out[inside] = evaluate(gap[inside])
     return out
 
@@ -272,7 +265,6 @@ def minimize_energy(
     shape = h.shape
     es = substrate.contact_modulus
     rigid = substrate.rigid_mean
-    xp = array_namespace(h)
     # the variable lives on the work grid (the patch itself unless the boundary is free)
     elastic_pressure = stiffness_operator(substrate, work_grid=True)
     compliance = compliance_operator(substrate, work_grid=True)
@@ -284,18 +276,18 @@ def minimize_energy(
     if initial is not None:
         w = warm_deflection(initial, substrate, h, compliance)
         if rigid:
-            w -= xp.mean(w)
+            w -= np.mean(w)
     else:
-        w = xp.zeros(n, dtype=h.dtype, device=array_device(h))
+        w = np.zeros(n, dtype=h.dtype)
     kw = elastic_pressure(w)
     gap = base + w  # the iterate (w = gap - base is only formed when K w is recomputed)
     del w
     work = Workspace(gap, patch)
     # float32 copies of what the single-precision convolutions take (module docstring)
-    fast = xp.empty(n, dtype=xp.float32, device=array_device(h))
-    fast_result = xp.empty_like(fast) if work.inplace else None  # their results (NumPy)
-    # K z on the second core while the line search selects its band (NumPy, 1-thread FFTs)
-    overlap = work.inplace and overlaps_fft(n)
+    fast = np.empty(n, dtype=np.float32)
+    fast_result = np.empty_like(fast)  # their results
+    # K z on the second core while the line search selects its band (1-thread FFTs)
+    overlap = overlaps_fft(n)
     # the interaction pressure is zero beyond its cutoff: kept as its values p_near on
     # the sites `near` (None: every site) where it can be nonzero
     cutoff = interaction.cutoff
@@ -305,12 +297,12 @@ def minimize_energy(
     # (module docstring)
     refresh_at_once = initial is not None and patch is None
     p_near = interaction.pressure(gap if near is None else gap[near])
-    gr = xp.empty_like(gap)
+    gr = np.empty_like(gap)
 
     def imbalance(kw, p_near, near):
         """gr = K w - p_int, without its mean when the uniform mode is rigid (its force
         is the load)."""
-        m = (-free.load if free else (vtotal(kw) - vtotal(p_near)) / n) if rigid else 0.0
+        m = (-free.load if free else (total(kw) - total(p_near)) / n) if rigid else 0.0
         g = work.shifted(gr, kw, m)
         if near is None:
             g -= p_near
@@ -318,43 +310,26 @@ def minimize_energy(
             g[near] -= p_near
         return g
 
-    def speculate(alpha, p_near):
-        """Off NumPy: the state after the line search's first guess ``alpha`` (a device
-        scalar) with its pressure, and the residual's extremes, which then come to the
-        host in the line search's transfer: an accepted guess (the common case) costs
-        the iteration one host sync instead of two."""
-        gap_, kw_ = work.axpy(gap, alpha, s), work.axpy(kw, alpha, ks)
-        gr_ = imbalance(kw_, p_near, near)
-        return (gap_, kw_, gr_), [xp.max(gr_), xp.min(gr_)]
-
     gr = imbalance(kw, p_near, near)
     exact = True  # kw is K w from a fresh float64 convolution (not updated incrementally)
     reliable = ReliableUpdates(tol)
     stiff = diagonal = None
     directions = False  # whether s, ks hold conjugate directions to build on
-    # zero before the first direction: off NumPy the first one is 0 s - z (beta = 0)
-    new = xp.empty_like if work.inplace else xp.zeros_like
-    s, ks, z, z_old = (new(gap) for _ in range(4))
+    s, ks, z, z_old = (np.empty_like(gap) for _ in range(4))
     gz_old = 1.0
     status, message = SolveStatus.ITERATION_LIMIT, "iteration cap reached"
     residual, it = math.inf, 0
-    extremes, guess = None, {}  # the residual's extremes fetched ahead; speculate's result
     stall = FloorGuard(StallGuard(dtype_name(h)), dtype_name(h), lambda: largest(p_near), es,
-                       tol, lambda: physical_pressure_scale(to_numpy(h), substrate, interaction))
+                       tol, lambda: physical_pressure_scale(h, substrate, interaction))
     while True:
-        # the one host transfer of an iteration besides the line search's (a GPU waits here)
-        if extremes is None:
-            gr_max, gr_min = fetch(xp, [xp.max(gr), xp.min(gr)])
-        else:  # brought over with the line search's guess (speculate)
-            (gr_max, gr_min), extremes = extremes, None
-        residual = max(gr_max, -gr_min) / es
+        residual = max(float(np.max(gr)), -float(np.min(gr))) / es
         if not math.isfinite(residual):
             status = SolveStatus.NON_FINITE
             message = f"non-finite state at iteration {it} (check inputs and the interaction)"
             break
         if (update := reliable.check(residual, exact)) == "refresh":
             w = work.difference(gap, base)  # in the scratch array, consumed at once
-            kw, exact = elastic_pressure(w, out=kw if work.inplace else None), True
+            kw, exact = elastic_pressure(w, out=kw), True
             gr = imbalance(kw, p_near, near)
             continue
         if update == "restart":
@@ -381,18 +356,15 @@ def minimize_energy(
         if free and (z := free.add(z, gr, gap, it, refresh_every)) is None:
             status, message = SolveStatus.DETACHED, free.detached
             break
-        if work.inplace:
-            gz = _dot(gr, z)
-            # PR+ (gz_old is 0 only at the rounding floor of a deeply compressed state)
-            restart = restart or gz_old == 0
-            beta = 0.0 if restart else max(0.0, (gz - _dot(gr, z_old)) / gz_old)
-            # s = -z + beta s (in place), and below ks = K s = -K z + beta ks
-            s = work.scale_sub(s, beta, z) if beta > 0 else work.negative(s, z)
-            slope0 = _dot(gr, s)
-            if slope0 >= 0:  # not a descent direction: restart along the preconditioned -gr
-                s, slope0, beta = work.negative(s, z), -gz, 0.0
-        else:  # the same with device scalars, selected by masks (no host sync)
-            s, slope0, beta, gz = _direction_on_device(xp, work, gr, z, z_old, s, gz_old, restart)
+        gz = _dot(gr, z)
+        # PR+ (gz_old is 0 only at the rounding floor of a deeply compressed state)
+        restart = restart or gz_old == 0
+        beta = 0.0 if restart else max(0.0, (gz - _dot(gr, z_old)) / gz_old)
+        # s = -z + beta s (in place), and below ks = K s = -K z + beta ks
+        s = work.scale_sub(s, beta, z) if beta > 0 else work.negative(s, z)
+        slope0 = _dot(gr, s)
+        if slope0 >= 0:  # not a descent direction: restart along the preconditioned -gr
+            s, slope0, beta = work.negative(s, z), -gz, 0.0
         gz_old, directions = gz, True
         if callable(kz):  # K z still on the background thread: ks when the line search needs it
             ks_of_s = functools.partial(_direction_stiffness, work, ks, beta, kz)
@@ -400,7 +372,7 @@ def minimize_energy(
             ks = ks_of_s = _direction_stiffness(work, ks, beta, kz)
         # s.K w from the slope, s.gr = s.K w - s.p_int (s has no mean when the mean is
         # rigid): a dot over the interaction's sites instead of the grid
-        elastic_slope = slope0 + vdot(s if near is None else s[near], p_near)
+        elastic_slope = slope0 + _dot(s if near is None else s[near], p_near)
         alpha, near, p_near = line_minimum(
             interaction,
             gap,
@@ -412,17 +384,12 @@ def minimize_energy(
             with_pressure=True,
             work=work,
             elastic_slope=elastic_slope,
-            speculate=None if work.inplace else speculate,
-            speculated=guess,
         )
         if not math.isfinite(alpha):
             status = SolveStatus.LINE_SEARCH_FAILED
             message = f"line search failed at iteration {it}"
             break
         exact = False
-        if guess:  # the first guess was taken: its state and extremes are at hand
-            (gap, kw, gr), extremes = guess.pop("state"), guess.pop("values")
-            continue
         gap = work.axpy(gap, alpha, s)
         kw = work.axpy(kw, alpha, ks)
         gr = imbalance(kw, p_near, near)
@@ -436,8 +403,8 @@ def minimize_energy(
     return make_result(
         h,
         substrate,
-        xp.reshape(p_int, shape),
-        xp.reshape(gap - base, shape),
+        np.reshape(p_int, shape),
+        np.reshape(gap - base, shape),
         offset,
         it,
         residual,
@@ -446,6 +413,6 @@ def minimize_energy(
         tol,
         "preconditioned-cg",
         time.perf_counter() - t_start,
-        repulsive=xp.reshape(rep, shape),
-        attractive=xp.reshape(att, shape),
+        repulsive=np.reshape(rep, shape),
+        attractive=np.reshape(att, shape),
     )

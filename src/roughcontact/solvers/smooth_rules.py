@@ -1,7 +1,7 @@
 """Rules of the smooth-interaction minimiser shared by its NumPy loop and its compiled one.
 
-The NumPy/array-API loop (:mod:`.smooth`, with :mod:`.line_search` and :mod:`._block`)
-and the compiled JAX loop (:mod:`._smooth_jax`) take the same steps: the constants below
+The NumPy loop (:mod:`.smooth`, with :mod:`.line_search` and :mod:`._block`) and the
+compiled JAX loop (:mod:`._smooth_jax`) take the same steps: the constants below
 are stated once here and imported by both (as :mod:`.pk_rules` is for the hard wall).
 Each was chosen by measurement, given with it.
 """
