@@ -56,14 +56,10 @@ from __future__ import annotations
 import math
 import time
 
+import numpy as np
 from array_api_compat import is_jax_array  # (looks at sys.modules: imports no jax)
 
-from .._backend import (
-    array_device,
-    array_namespace,
-    computes_on_heights_device,
-    dtype_name,
-)
+from .._backend import computes_on_heights_device, dtype_name
 from ._free_mean import FreeMean
 from ._inplace import Workspace
 from ._projection import _projected_gradient_step, project_feasible
@@ -80,7 +76,7 @@ from .line_search import line_minimum
 from .loop_control import ReliableUpdates, StallGuard, stopping
 from .observables import make_result
 from .reductions import dot as _dot
-from .reductions import vdot, vtotal
+from .reductions import total
 from .result import SolveStatus
 
 __all__ = ["minimize_energy_bounded", "project_feasible"]
@@ -151,13 +147,12 @@ def minimize_energy_bounded(
     shape = h.shape
     es = substrate.contact_modulus
     rigid = substrate.rigid_mean
-    xp = array_namespace(h)
     # the variable lives on the work grid (the patch itself unless the boundary is free)
     base = on_work_grid(substrate, offset - h)  # gap = base + w
     n = base.shape[0]
     patch = patch_sites(substrate, h)  # None: every site is on the patch
     work = None if patch is None else Workspace(base, patch)
-    lower = -base if patch is None else xp.where(patch, -base, -math.inf)  # no wall off it
+    lower = -base if patch is None else np.where(patch, -base, -math.inf)  # no wall off it
     # the offset's check and the heights' rms in one transfer
     # (none where load control's checked heights bring their statistics)
     (scale,) = check_hard_wall_offset(h, substrate, offset, also=["std"])
@@ -176,29 +171,29 @@ def minimize_energy_bounded(
         """The interaction's ``evaluate`` on the patch, zero on the padding."""
         if work is None:
             return evaluate(gap_)
-        out = xp.zeros_like(gap_)
+        out = np.zeros_like(gap_)
         out[work.patch] = evaluate(gap_[work.patch])
         return out
 
     if initial is not None:
         w0 = warm_deflection(initial, substrate, h, compliance_operator(substrate, work_grid=True))
     else:
-        w0 = xp.zeros(n, dtype=h.dtype, device=array_device(h))
+        w0 = np.zeros(n, dtype=h.dtype)
     # under load control (load given) the mean of w is free and mu = -load (_free_mean)
     free_mode = None if load is None else FreeMean.of(
         load, interaction, substrate, h, Workspace(base), rigid and patch is None)
     pin = rigid and free_mode is None  # the rigid mean as a constraint
-    w = project_feasible(w0 - xp.mean(w0) if rigid else w0, lower, pin)
+    w = project_feasible(w0 - np.mean(w0) if rigid else w0, lower, pin)
     kw = stiff(w)
     work_load = 0.0 if free_mode is None else free_mode.load  # N: its work N sum(w)
 
     def energy(w_, kw_):
-        e = 0.5 * vdot(w_, kw_) + vtotal(interaction.energy(on_patch(base + w_)))
-        return e + work_load * vtotal(w_) if work_load else e
+        e = 0.5 * _dot(w_, kw_) + total(interaction.energy(on_patch(base + w_)))
+        return e + work_load * total(w_) if work_load else e
 
     def masked_mean(x, mask, fallback):
         """mean of x over mask, else fallback()"""
-        return float(xp.mean(x[mask])) if xp.any(mask) else fallback()
+        return float(np.mean(x[mask])) if np.any(mask) else fallback()
 
     s = ks = z_old = None
     gz_old, active_old = 1.0, None
@@ -206,7 +201,7 @@ def minimize_energy_bounded(
     residual, it, mu = math.inf, 0, 0.0
     stall = StallGuard(dtype_name(h))
     reliable, exact = ReliableUpdates(tol), True  # exact: kw is K w from a fresh convolution
-    free = xp.ones(n, dtype=xp.bool, device=array_device(h))
+    free = np.ones(n, dtype=bool)
 
     def top(w, kw):
         """The gap, the multiplier mu, the active face, the free sites and the free sites'
@@ -218,16 +213,16 @@ def minimize_energy_bounded(
             on_wall = on_wall & patch
         mu = -work_load
         if pin:
-            mu = masked_mean(r, ~on_wall, lambda: float(xp.mean(r)))
+            mu = masked_mean(r, ~on_wall, lambda: float(np.mean(r)))
         active = on_wall & (r - mu > 0)
         free = ~active
         if pin:
             mu = masked_mean(r, free, lambda: mu)
-        return gap, mu, active, free, xp.where(free, r - mu, 0.0)
+        return gap, mu, active, free, np.where(free, r - mu, 0.0)
 
     while True:
         gap, mu, active, free, rr = top(w, kw)
-        residual = float(xp.max(xp.abs(rr))) / es
+        residual = float(np.max(np.abs(rr))) / es
         if not math.isfinite(residual):
             status = SolveStatus.NON_FINITE
             message = f"non-finite state at iteration {it} (check inputs and the interaction)"
@@ -237,7 +232,7 @@ def minimize_energy_bounded(
             continue
         if update == "restart":
             s = None  # the conjugate directions were built on a drifted gradient
-        done = residual <= tol or not bool(xp.any(free))
+        done = residual <= tol or not bool(np.any(free))
         if (end := stopping(done, residual, stall, it, max_iter)) is not None:
             status, message = end
             break
@@ -246,17 +241,17 @@ def minimize_energy_bounded(
             break
         it += 1
         reliable.step()
-        z = xp.where(free, green(rr), 0.0)
+        z = np.where(free, green(rr), 0.0)
         if rigid:
-            z = xp.where(free, z - masked_mean(z, free, lambda: 0.0), 0.0)
+            z = np.where(free, z - masked_mean(z, free, lambda: 0.0), 0.0)
         if free_mode is not None:  # the uniform block on the free sites
             if (z := free_mode.add_on(z, rr, gap, free, it)) is None:
                 status, message = SolveStatus.DETACHED, free_mode.detached
                 break
-            z = xp.where(free, z, 0.0)
+            z = np.where(free, z, 0.0)
         restart = s is None or it % restart_every == 0 or active_old is None
         gz = _dot(rr, z)
-        restart = restart or bool(xp.any(active != active_old))
+        restart = restart or bool(np.any(active != active_old))
         restart = restart or gz_old == 0  # no previous direction to conjugate to
         beta = 0.0 if restart else max(0.0, (gz - _dot(rr, z_old)) / gz_old)  # PR+
         s = -z + beta * s if beta > 0 else -z
@@ -272,7 +267,7 @@ def minimize_energy_bounded(
             status = SolveStatus.LINE_SEARCH_FAILED
             message = f"line search failed at iteration {it}"
             break
-        alpha_max = float(xp.min(-gap[crossing] / s[crossing])) if xp.any(crossing) else math.inf
+        alpha_max = float(np.min(-gap[crossing] / s[crossing])) if np.any(crossing) else math.inf
         if alpha <= alpha_max:
             w += alpha * s
             kw += alpha * ks
@@ -305,15 +300,15 @@ def minimize_energy_bounded(
 
     gap = base + w
     if free_mode is not None:  # the offset moved with the mean of w
-        moved = float(xp.mean(w))
+        moved = float(np.mean(w))
         offset, w = offset + moved, w - moved
     p_int = law(interaction.pressure, gap)
-    traction = on_patch(xp.where(free, p_int, kw - mu))  # none on the padding
+    traction = on_patch(np.where(free, p_int, kw - mu))  # none on the padding
     return make_result(
         h,
         substrate,
-        xp.reshape(traction, shape),
-        xp.reshape(on_patch(w), shape),
+        np.reshape(traction, shape),
+        np.reshape(on_patch(w), shape),
         offset,
         it,
         residual,
@@ -322,6 +317,6 @@ def minimize_energy_bounded(
         tol,
         "bounded-cg",
         time.perf_counter() - t_start,
-        repulsive=xp.reshape(traction > 0, shape),
-        attractive=xp.reshape(traction < 0, shape),
+        repulsive=np.reshape(traction > 0, shape),
+        attractive=np.reshape(traction < 0, shape),
     )
