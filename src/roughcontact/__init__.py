@@ -7,7 +7,7 @@ Conventions and units: see the README (lattice units a0 = 1, E* = 1 unless given
 
 # first: under the command line, Ctrl-C while the modules load exits 130 in one line
 from . import _startup  # noqa: F401
-from ._backend import to_device
+from ._accelerator import to_device
 from ._validate import ParameterError
 from .analysis import (
     area_fraction,

@@ -39,10 +39,18 @@ import warnings
 import numpy as np
 from array_api_compat import is_jax_array
 
-from ._backend import array_device, array_namespace, is_array, is_numpy_array, to_numpy
+from ._backend import (
+    array_device,
+    array_namespace,
+    check_dtype,
+    is_array,
+    is_numpy_array,
+    jax_precision,
+    to_numpy,
+)
 from .errors import ParameterError
 
-__all__ = ["check_device", "device_index", "jax_gpu", "place", "routed"]
+__all__ = ["check_device", "device_index", "jax_gpu", "place", "routed", "to_device"]
 
 #: What to install for ``device="cuda"``.
 JAX_CUDA = 'pip install "jax[cuda12]"'
@@ -322,8 +330,6 @@ def routed(solver):
         route = plan(heights, device, compiled)
         if route is None:
             if device is None and is_jax_array(heights):
-                from ._backend import jax_precision
-
                 with jax_precision(heights, kwargs.get("dtype")):
                     return solver(heights, *args, device=device, **kwargs)
             return solver(heights, *args, device=device, **kwargs)
@@ -336,8 +342,6 @@ def routed(solver):
             if callable(progress := kwargs.get("progress")):
                 kwargs["progress"] = lambda step, n, res: progress(step, n, route.result(res))
             if route.device is not None:
-                from ._backend import jax_precision
-
                 with jax_precision(h, kwargs.get("dtype")):
                     res = solver(h, *args, device=None, **kwargs)
             else:
@@ -345,3 +349,59 @@ def routed(solver):
         return route.result(res)
 
     return wrapper
+
+
+def _cupy(device: str):
+    """(cupy, GPU index) for ``"cuda"`` / ``"cuda:N"``, or None when CuPy is not importable
+    or sees no such GPU."""
+    index = device_index(device)
+    try:
+        import cupy
+
+        count = cupy.cuda.runtime.getDeviceCount()
+    except Exception:  # noqa: BLE001 - not installed, no driver, no device
+        return None
+    return (cupy, index) if 0 <= index < count else None
+
+
+def to_device(x, device: str | None = None, dtype=None):
+    """``x`` as an array on ``device`` in floating precision ``dtype``.
+
+    Parameters
+    ----------
+    x : array of any backend, or array-like
+    device : {None, "cpu", "cuda", "cuda:N"}
+        ``None`` keeps the array where it is (its own namespace); ``"cpu"`` gives NumPy;
+        ``"cuda"`` gives CuPy on the current (``"cuda:N"``: the N-th) GPU, or, without
+        CuPy, a JAX array on JAX's CUDA device N (the solvers compute on either with
+        the compiled loops).
+    dtype : {None, "float64", "float32"}
+        ``None`` keeps a floating array's precision and makes anything else float64.
+
+    Returns
+    -------
+    array
+        Copied only when the device or the precision changes.
+    """
+    dtype = check_dtype(dtype)
+    device_index(device)
+    if device == "cpu" or (device is None and not is_array(x)):
+        x = to_numpy(x) if is_array(x) else np.asarray(x)
+    elif device is not None:
+        found = _cupy(device)
+        if found is not None:
+            cupy, index = found
+            with cupy.cuda.Device(index):
+                x = cupy.asarray(x)
+        else:
+            x = place(x, device)  # JAX's GPU (or a one-line error saying what to install)
+    xp = array_namespace(x)
+    if dtype is None:
+        dtype = x.dtype if xp.isdtype(x.dtype, "real floating") else "float64"
+    want = getattr(xp, dtype) if isinstance(dtype, str) else dtype
+    if x.dtype == want:
+        return x
+    if is_jax_array(x):  # float64 without JAX's global switch (see jax_precision)
+        with jax_precision(x):
+            return xp.astype(x, want)
+    return xp.astype(x, want)

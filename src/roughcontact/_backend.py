@@ -4,7 +4,8 @@ The shared numerical pieces (laws, operators, statistics, contact maps) are writ
 against the array API standard (``xp = array_namespace(x)``), so they run on NumPy, CuPy,
 JAX and other array-API libraries. The solvers have two backends, NumPy loops for the CPU
 and compiled (JAX) loops for accelerators; :mod:`._accelerator` routes every solve to
-one of them and its result back to the caller's namespace. On NumPy the FFTs go through
+one of them and its result back to the caller's namespace (and owns the device names:
+``to_device``, ``check_device``). On NumPy the FFTs go through
 :mod:`scipy.fft`, which is faster than ``numpy.fft`` and accepts ``workers=`` for
 multithreading; the solvers' convolutions (:func:`convolve`) call scipy's pocketfft
 binding directly, into arrays they allocate once.
@@ -29,9 +30,7 @@ __all__ = [
     "array_device",
     "array_namespace",
     "constant",
-    "check_device",
     "check_dtype",
-    "computes_on_heights_device",
     "convolve",
     "default_workers",
     "dtype_name",
@@ -43,7 +42,6 @@ __all__ = [
     "jax_precision",
     "overlaps_fft",
     "rfft2",
-    "to_device",
     "to_numpy",
 ]
 
@@ -307,79 +305,6 @@ def dtype_name(x) -> str:
     return "float32" if x.dtype == array_namespace(x).float32 else "float64"
 
 
-def _cupy(device: str):
-    """(cupy, GPU index) for ``"cuda"`` / ``"cuda:N"``, or None when CuPy is not importable
-    or sees no such GPU."""
-    from ._accelerator import device_index
-
-    index = device_index(device)
-    try:
-        import cupy
-
-        count = cupy.cuda.runtime.getDeviceCount()
-    except Exception:  # noqa: BLE001 - not installed, no driver, no device
-        return None
-    return (cupy, index) if 0 <= index < count else None
-
-
-def check_device(device: str | None) -> str | None:
-    """Validate a device request before any work: None, "cpu", "cuda" or "cuda:N".
-
-    A CUDA device means the compiled (JAX) loops on JAX's CUDA device N: this checks that
-    JAX with CUDA is installed (a one-line :class:`ParameterError` saying
-    ``pip install "jax[cuda12]"`` if not), so that a study or a path fails at once with a
-    clear error rather than in its first solve (:func:`._accelerator.check_device`).
-    """
-    from ._accelerator import check_device as check
-
-    return check(device)
-
-
-def to_device(x, device: str | None = None, dtype=None):
-    """``x`` as an array on ``device`` in floating precision ``dtype``.
-
-    Parameters
-    ----------
-    x : array of any backend, or array-like
-    device : {None, "cpu", "cuda", "cuda:N"}
-        ``None`` keeps the array where it is (its own namespace); ``"cpu"`` gives NumPy;
-        ``"cuda"`` gives CuPy on the current (``"cuda:N"``: the N-th) GPU, or, without
-        CuPy, a JAX array on JAX's CUDA device N (the solvers compute on either with
-        the compiled loops).
-    dtype : {None, "float64", "float32"}
-        ``None`` keeps a floating array's precision and makes anything else float64.
-
-    Returns
-    -------
-    array
-        Copied only when the device or the precision changes.
-    """
-    from ._accelerator import device_index, place
-
-    dtype = check_dtype(dtype)
-    device_index(device)
-    if device == "cpu" or (device is None and not is_array(x)):
-        x = to_numpy(x) if is_array(x) else np.asarray(x)
-    elif device is not None:
-        found = _cupy(device)
-        if found is not None:
-            cupy, index = found
-            with cupy.cuda.Device(index):
-                x = cupy.asarray(x)
-        else:
-            x = place(x, device)  # JAX's GPU (or a one-line error saying what to install)
-    xp = array_namespace(x)
-    if dtype is None:
-        dtype = x.dtype if xp.isdtype(x.dtype, "real floating") else "float64"
-    want = getattr(xp, dtype) if isinstance(dtype, str) else dtype
-    if x.dtype == want:
-        return x
-    if is_jax_array(x):  # float64 without JAX's global switch (see jax_precision)
-        with jax_precision(x):
-            return xp.astype(x, want)
-    return xp.astype(x, want)
-
-
 def jax_precision(heights, dtype=None):
     """The context a solve on JAX ``heights`` runs in, so that float64 needs no global switch.
 
@@ -402,13 +327,3 @@ def jax_precision(heights, dtype=None):
     if jax.config.jax_enable_x64:
         return contextlib.nullcontext()
     return jax.enable_x64(True)
-
-
-def computes_on_heights_device(solver):
-    """Wrap a public solver with its route to the backend it computes on: NumPy heights
-    on the CPU to the NumPy loops, JAX heights, other libraries' arrays and
-    ``device="cuda"`` to the compiled loops, results back in the caller's namespace
-    (:func:`._accelerator.routed`)."""
-    from ._accelerator import routed
-
-    return routed(solver)

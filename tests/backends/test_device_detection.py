@@ -19,7 +19,8 @@ import numpy as np
 import pytest
 
 import roughcontact as rc
-from roughcontact._backend import is_array, to_device, to_numpy
+from roughcontact._accelerator import to_device
+from roughcontact._backend import is_array, to_numpy
 
 xp = pytest.importorskip("array_api_strict")
 

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 import roughcontact as rc
-from roughcontact._backend import to_device
+from roughcontact._accelerator import to_device
 
 N = 64
 H = rc.self_affine((N, N), hurst=0.8, rms_slope=0.1, short_cutoff=4, seed=11)

@@ -10,12 +10,10 @@ when JAX heights arrive (this module is imported lazily by :mod:`.solve`).
 
 from __future__ import annotations
 
-import math
 import time
 
 import jax.numpy as jnp
 
-from .._validate import ParameterError
 from ._pk_jax import check_jax_inputs
 from .adhesive_rules import (
     RUNAWAY_RATIO,
@@ -27,13 +25,12 @@ from .adhesive_rules import (
 from .bounded_rules import ON_WALL
 from .fourier import compliance_operator
 from .inputs import check_hard_wall_offset, check_problem, warm_deflection
-from .load_control import solve_at_load
 from .loop_control import STALL_PATIENCE
 from .observables import make_result
 from .result import SolveStatus
 from .smooth_rules import FLOOR_PATIENCE, REFRESH_EVERY, RESTART_EVERY
 
-__all__ = ["minimize_energy_bounded_jax", "minimize_energy_jax", "solve_jax"]
+__all__ = ["minimize_energy_bounded_jax", "minimize_energy_jax"]
 
 
 def _initial_deflection(initial, substrate, h):
@@ -223,26 +220,6 @@ def _detached(load, it, min_gap):
         f"(smallest gap {float(min_gap):.3g}, beyond the attraction's peak, where no site "
         "pulls that hard): beyond the pull-off force"
     )
-
-
-def solve_jax(heights, substrate, interaction, *, load, offset, **kwargs):
-    """:func:`.solve.solve` for an adhesive law on JAX heights: the compiled loop of the
-    law's kind (smooth or hard-core) at an offset, or under load control
-    :func:`.load_control.solve_at_load` with that loop as its minimiser: the load inside
-    the compiled loop's one minimisation (``takes_load``), and where the NumPy loop falls
-    back to the offset search around nested solves, that search around compiled solves
-    (each warm-started on the device from the nearest state)."""
-    minimize = minimize_energy_bounded_jax if interaction.hard_core else minimize_energy_jax
-    if offset is not None:
-        return minimize(heights, substrate, interaction, offset=offset, **kwargs)
-    if not math.isfinite(float(load)):
-        raise ParameterError(f"load must be finite, got {load!r}")
-    # the checks of the compiled loops first (one line each), then load control's; the
-    # precision as at an offset (default: the heights' own)
-    kwargs["dtype"] = check_jax_inputs(
-        heights, substrate, kwargs["dtype"], kwargs["device"], kwargs["callback"]
-    )
-    return solve_at_load(minimize, heights, substrate, interaction, load=load, **kwargs)
 
 
 #: :func:`.load_control.solve_at_load` passes the load to this minimiser (its one

@@ -59,7 +59,8 @@ import time
 import numpy as np
 from array_api_compat import is_jax_array  # (looks at sys.modules: imports no jax)
 
-from .._backend import computes_on_heights_device, dtype_name
+from .._accelerator import routed
+from .._backend import dtype_name
 from ._free_mean import FreeMean
 from ._inplace import Workspace
 from ._projection import _projected_gradient_step, project_feasible
@@ -82,7 +83,7 @@ from .result import SolveStatus
 __all__ = ["minimize_energy_bounded", "project_feasible"]
 
 
-@computes_on_heights_device
+@routed
 def minimize_energy_bounded(
     heights,
     substrate,

@@ -8,12 +8,12 @@ import math
 
 import numpy as np
 
+from .._accelerator import to_device
 from .._backend import (
     array_device,
     array_namespace,
     dtype_name,
     is_numpy_array,
-    to_device,
     to_numpy,
 )
 from .._validate import ParameterError, heights2d, real_array, tolerance

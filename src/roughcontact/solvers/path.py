@@ -10,12 +10,11 @@ import time
 import numpy as np
 from array_api_compat import is_jax_array  # (looks at sys.modules: imports no jax)
 
+from .._accelerator import routed, to_device
 from .._backend import (
     array_device,
     array_namespace,
-    computes_on_heights_device,
     dtype_name,
-    to_device,
     to_numpy,
 )
 from .._validate import ParameterError, step_indices, step_list
@@ -48,7 +47,7 @@ class PathInterrupted(KeyboardInterrupt):
         self.partial = partial
 
 
-@computes_on_heights_device
+@routed
 def approach_retract(
     heights,
     substrate,

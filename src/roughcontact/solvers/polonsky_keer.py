@@ -87,10 +87,10 @@ from dataclasses import dataclass
 
 from array_api_compat import is_jax_array  # (looks at sys.modules: imports no jax)
 
+from .._accelerator import routed
 from .._backend import (
     array_device,
     array_namespace,
-    computes_on_heights_device,
     dtype_name,
     is_array,
     is_numpy_array,
@@ -162,7 +162,7 @@ def _initial_pressure(initial, heights, substrate, load, offset):
     return xp.maximum(xp.reshape(heights, (-1,)) - offset, 0.0) * scale
 
 
-@computes_on_heights_device
+@routed
 def polonsky_keer(
     heights,
     substrate,

@@ -98,7 +98,8 @@ import time
 import numpy as np
 from array_api_compat import is_jax_array  # (looks at sys.modules: imports no jax)
 
-from .._backend import computes_on_heights_device, dtype_name, overlaps_fft
+from .._accelerator import routed
+from .._backend import dtype_name, overlaps_fft
 from .._validate import ParameterError
 from ._block import (  # noqa: F401 - STIFF_FRACTION, _precondition, _stiff_sites: public here
     STIFF_FRACTION,
@@ -191,7 +192,7 @@ def _local(evaluate, cutoff, gap):
     return out
 
 
-@computes_on_heights_device
+@routed
 def minimize_energy(
     heights,
     substrate,

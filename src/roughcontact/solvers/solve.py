@@ -6,7 +6,7 @@ import math
 
 from array_api_compat import is_jax_array  # (looks at sys.modules: imports no jax)
 
-from .._backend import computes_on_heights_device
+from .._accelerator import routed
 from .._validate import MAX_ITER, ParameterError, tolerance
 from ..interactions.hardwall import HardWall
 from .bounded import minimize_energy_bounded
@@ -17,7 +17,7 @@ from .smooth import minimize_energy
 __all__ = ["solve"]
 
 
-@computes_on_heights_device
+@routed
 def solve(
     heights,
     substrate,
@@ -108,19 +108,25 @@ def solve(
         )
     if (load is None) == (offset is None):
         raise ParameterError("give exactly one of load (mean pressure) or offset")
-    if is_jax_array(heights):  # the compiled loops (jax is imported only here)
-        from ._adhesive_jax import solve_jax
-
-        return solve_jax(heights, substrate, interaction, load=load, offset=offset,
-                         initial=initial, tol=tol, max_iter=max_iter, callback=callback,
-                         device=device, dtype=dtype)  # fmt: skip
     minimize = minimize_energy_bounded if interaction.hard_core else minimize_energy
+    if is_jax_array(heights):  # the compiled loops (jax is imported only here)
+        from ._adhesive_jax import minimize_energy_bounded_jax, minimize_energy_jax
+
+        minimize = minimize_energy_bounded_jax if interaction.hard_core else minimize_energy_jax
     kwargs = {"initial": initial, "tol": tol, "max_iter": max_iter, "callback": callback}
     kwargs |= {"device": device, "dtype": dtype}
     if offset is not None:
         return minimize(heights, substrate, interaction, offset=offset, **kwargs)
     if not math.isfinite(float(load)):
         raise ParameterError(f"load must be finite, got {load!r}")
+    if is_jax_array(heights):
+        from ._pk_jax import check_jax_inputs
+
+        # the compiled loops' checks first (one line each), then load control's, which runs
+        # the compiled loop as its minimiser (the load inside its one minimisation:
+        # ``takes_load``; where the NumPy loop falls back to the offset search around nested
+        # solves, that search around compiled solves, each warm-started on the device)
+        kwargs["dtype"] = check_jax_inputs(heights, substrate, dtype, device, callback)
     return solve_at_load(minimize, heights, substrate, interaction, load=load, **kwargs)
 
 

@@ -13,7 +13,7 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
-from .._backend import check_device
+from .._accelerator import check_device
 from .._signals import Terminated, deferred, exit_code, interruptible
 from .._validate import ParameterError
 from . import cluster, lock, store
