@@ -129,7 +129,8 @@ def prepare(w, substrate, interaction, *, base, tol, max_iter, restart_every, re
     """
     acc = accumulation_dtype()
     dev = base.device
-    stiff, green = substrate.multipliers(base)[_STIFFNESS], substrate.multipliers(base)[_COMPLIANCE]
+    multipliers = substrate.multipliers(base)
+    stiff, green = multipliers[_STIFFNESS], multipliers[_COMPLIANCE]
     single = substrate.multipliers(base.astype(jnp.float32))
 
     def scalar(v, dtype=acc):
