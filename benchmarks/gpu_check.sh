@@ -20,10 +20,11 @@
 #   PART=one benchmarks/gpu_check.sh              # issue 38's item 5 in one call of
 #                                                   # <= 8 min (a session's whole device
 #                                                   # budget is 15 min), then PART=two
-#                                                   # (<= 6 min): GPU/CPU at CPU_SIZE² and
-#                                                   # the Dask study
-# The two device calls to make: PART=one, then PART=two (PART=one ran 2026-11-27 on an
-# H200, see benchmarks/README.md; PART=two has not run on a GPU yet). The older split,
+#                                                   # (<= 7 min): GPU/CPU at CPU_SIZE², the
+#                                                   # Dask study, float32's floor, the
+#                                                   # path's phases
+# The two device calls to make: PART=one, then PART=two (both ran 2026-11-27 on an H200,
+# PART=two's steps in separate calls; see benchmarks/README.md). The older split,
 # PART=jax + PART=second (the paper task and the 512² task on the GPU; PART=all adds the
 # 512² task on one CPU core and the Dask study), measures the same with wider limits.
 set -u -o pipefail
@@ -58,15 +59,23 @@ step() {  # step SECONDS TITLE COMMAND...: run with a limit, log the time it too
     $PY -c "import jax; print('jax', jax.__version__, jax.devices())"
     cpu=(--cpu-sizes)
     [ -n "$CPU_SIZE" ] && [ "$PART" != second ] && cpu=(--cpu-sizes "$CPU_SIZE" --cpu-repeats 1)
-    if [ "$PART" = two ]; then  # the second call: GPU/CPU at CPU_SIZE², the Dask study
-        step 300 "GPU/CPU at ${CPU_SIZE}² (NumPy on every core)" $PY benchmarks/gpu.py \
-            --backend jax --device "$DEVICE" --sizes "$CPU_SIZE" --cpu-sizes "$CPU_SIZE" \
-            --cpu-repeats 1 --path-size 0 --repeats 2 --no-footprint \
-            --solvers hardwall adhesive --json "$OUTDIR/gpu_cpu.json"
+    if [ "$PART" = two ]; then  # the second call: GPU/CPU at CPU_SIZE², the Dask study,
+        # float32's floor, where the path's time goes (limits sum to 455 s)
+        for solver in hardwall adhesive; do
+            step 140 "GPU/CPU at ${CPU_SIZE}²: $solver (NumPy on every core)" $PY \
+                benchmarks/gpu.py --backend jax --device "$DEVICE" --sizes "$CPU_SIZE" \
+                --cpu-sizes "$CPU_SIZE" --cpu-repeats 1 --path-size 0 --repeats 2 \
+                --no-footprint --solvers $solver --json "$OUTDIR/gpu_cpu_$solver.json"
+        done
         $PY benchmarks/gpu_task.py --write-study "$TMP/one.toml" --size "$SMALL"
         step 60 "study run ${SMALL}² through Dask on $DEVICE" $PY -c \
             "from roughcontact.cli.main import main; main()" study run "$TMP/one.toml" \
             -o "$TMP/study" --device "$DEVICE" --workers 1 --no-progress
+        step 40 "float32's residual floor at ${PATH_SIZE}²" $PY benchmarks/float32_floor.py \
+            --size "$PATH_SIZE" --json "$OUTDIR/float32_floor.json"
+        step 75 "the ${PATH_SIZE}² path's solves and per-state work" $PY \
+            benchmarks/gpu_path_phases.py --size "$PATH_SIZE" --states 41 \
+            --json "$OUTDIR/path_phases.json"
         echo "=== done $(date -u)"
         exit 0
     fi

@@ -98,6 +98,24 @@ def test_float32_converges(x32):
     assert abs(res.repulsive_area - ref.repulsive_area) * h.size <= 3
 
 
+@pytest.mark.parametrize("loop", ["numpy", "jax"])
+def test_float32_converges_beside_a_deep_pit(x64, loop):
+    # one site 100 a0 deep: a gap of 100 a0 rounds to 7.6e-6 a0 in float32, and K w formed
+    # from gap - base carried that rounding (a residual floor ~1e-5 E*: "stalled" after 200
+    # iterations). Both loops advance w itself in float32 and converge as without the pit
+    h = rc.self_affine((128, 128), hurst=0.8, rms_slope=0.1, short_cutoff=8, long_cutoff=64, seed=1)
+    h[128 // 3, 128 // 5] -= 100.0
+    sub = rc.Substrate(h.shape)
+    d = rc.solve(h, sub, load=5e-4).offset + 1.0
+    ref = rc.solve(h, sub, LAW, offset=d)
+    single = h.astype(np.float32) if loop == "numpy" else jnp.asarray(h, dtype=jnp.float32)
+    res = rc.solve(single, sub, LAW, offset=d, dtype="float32")
+    assert res.converged, res.message
+    assert res.iterations <= 2 * ref.iterations
+    assert abs(res.repulsive_area - ref.repulsive_area) * h.size <= 3
+    assert np.max(np.abs(np.asarray(res.deflection, dtype=float) - ref.deflection)) <= 1e-4
+
+
 def test_float64_floor_guard_as_the_numpy_loop(x64):
     # deep compression (pressures ~1e9 E*): both loops stop at the rounding floor, alike,
     # and judge it on the physical pressure scale: a runaway, not "stalled"

@@ -48,9 +48,14 @@ def count_patches_jax(mask, periodic):
     def body(c):
         labels, _ = c
         new = neighbours(labels)
-        flat = jnp.concatenate([jnp.reshape(new, (-1,)), outside[None]])
-        old = jnp.concatenate([jnp.reshape(labels, (-1,)), outside[None]])
-        flat = flat.at[old].min(flat)  # hook each old root to the smallest new label
+        fnew, fold = jnp.reshape(new, (-1,)), jnp.reshape(labels, (-1,))
+        # hook each old root to the smallest new label, scattered only from the sites whose
+        # label fell (elsewhere the minimum changes nothing, as labels never exceed their
+        # site): on a GPU a scatter from every site is atomics contending for one address
+        # (every site outside the map names ``outside``)
+        hook = jnp.where(fnew < fold, fold, n + 1)  # out of bounds: dropped
+        flat = jnp.concatenate([fnew, outside[None]])
+        flat = flat.at[hook].min(fnew, mode="drop")
         flat = flat[flat]
         flat = flat[flat]
         new = jnp.where(m, jnp.reshape(flat[:n], (nx, ny)), outside)

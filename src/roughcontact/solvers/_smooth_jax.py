@@ -22,7 +22,8 @@ site (a law vanishes exactly beyond its cutoff, so the values are those of the N
 loop's band of sites), and sums run in XLA's order, so the iterates agree to rounding.
 The convolutions that only steer (the Green's-function block) or update ``K w`` by
 increments (``K z``) run in float32 as there; ``K w`` is recomputed in the heights'
-precision.
+precision, and for float32 heights from the deflection advanced beside the gap, in
+float64 where ``jax_enable_x64`` allows it (as the NumPy loop; :func:`_initial`).
 
 Precision: float64 needs ``jax_enable_x64`` while the program runs (see
 :func:`._jax_common.precision_scope`); with it the sums are accumulated in float64.
@@ -77,6 +78,10 @@ class Constants(NamedTuple):
     reach: object = None  # the uniform shift's bound, max(std(h), a0) (length)
     size: object = None  # the substrate's longer side (length; k_u's elastic floor)
     peak: object = None  # the gap of the law's largest tension (a tensile load)
+    # float32 fields with float64 available: the stiffness multipliers in float64, for the
+    # exact K w (a float32 FFT's own error, ~1e-7 log2(sites) of the largest pressure, set
+    # a residual floor of ~3e-6 E* at 4096²); None: K w in the fields' dtype
+    stiff_exact: object = None
 
 
 class State(NamedTuple):
@@ -107,6 +112,7 @@ class State(NamedTuple):
     floor_since: object  # ... the iterations since the reference (int32)
     status: object  # RUNNING or why the loop stopped (int32)
     k_u: object = None  # the uniform mode's stiffness (load control; None: offset control)
+    w: object = None  # float32: the deflection, advanced with the gap (None in float64)
 
 
 def _conv(x, kernel):
@@ -149,6 +155,8 @@ def prepare(w, substrate, interaction, *, base, tol, max_iter, restart_every, re
         peak = rules.attraction_peak_gap(interaction) if load < 0 else 0.0
         k = k._replace(load=scalar(load), reach=reach, size=scalar(
             max(substrate.shape) * substrate.pixel_size), peak=scalar(peak))  # fmt: skip
+    if base.dtype == jnp.float32 and acc == jnp.float64:
+        k = k._replace(stiff_exact=substrate.multipliers(base.astype(acc))[_STIFFNESS])
     st = _initial(w, k, interaction, bool(substrate.rigid_mean))
     if load is not None:
         st = st._replace(k_u=scalar(1.0))  # set at the first iteration
@@ -158,19 +166,32 @@ def prepare(w, substrate, interaction, *, base, tol, max_iter, restart_every, re
 @partial(jax.jit, static_argnames=("law", "rigid"))
 def _initial(w, k, law, rigid):
     acc = k.tol.dtype
-    kw = _conv(w, k.stiff)
+    kw = _exact_kw(w, k)
     gap = k.base + w
     p = law.pressure(gap)
     inf, zero_i = jnp.asarray(jnp.inf, acc), jnp.asarray(0, jnp.int32)
     false, true = jnp.asarray(False), jnp.asarray(True)
     zeros = jnp.zeros_like(gap)
+    # float32 also advances the deflection w itself: K w formed from gap - base carries the
+    # gap's rounding, ulp(max gap) ~ 4e-6 a0 where the gap spans 40 a0 (4096² surfaces), and
+    # that set a residual floor of ~E* ulp(max gap) / a0; w's own rounding is ulp(max |w|)
+    single = gap.dtype == jnp.float32
     return State(
         gap=gap, kw=kw, gr=_imbalance(kw, p, rigid, k.load), p=p, s=zeros, ks=zeros, z_old=zeros,
         gz_old=jnp.asarray(1.0, acc), stiff=jnp.zeros(gap.shape, bool), diagonal=zeros,
         has_stiff=false, directions=false, exact=true, it=zero_i, residual=inf,
         reliable=inf, since=zero_i, iterated=inf, best=inf, since_best=zero_i,
         reference=inf, floor_best=inf, floor_since=zero_i, status=zero_i,
+        w=w.astype(gap.dtype) if single else None,
     )  # fmt: skip
+
+
+def _exact_kw(w, k):
+    """``K w`` in the fields' dtype, convolved in float64 where :class:`Constants` holds
+    the float64 multipliers (float32 fields, ``jax_enable_x64``)."""
+    if k.stiff_exact is None:
+        return _conv(w, k.stiff)
+    return _conv(w.astype(k.stiff_exact.dtype), k.stiff_exact).astype(w.dtype)
 
 
 def _imbalance(kw, p, rigid, load=None):
@@ -323,6 +344,7 @@ def run(st, k, *, law, rigid, stall, floor):
         moved = st._replace(
             gap=st.gap + alpha.astype(dt) * s, kw=st.kw + alpha.astype(dt) * ks, p=p, s=s,
             ks=ks, z_old=z, gz_old=gz, directions=jnp.asarray(True), exact=jnp.asarray(False),
+            w=None if st.w is None else st.w + alpha.astype(dt) * s,
         )  # fmt: skip
         moved = moved._replace(gr=_imbalance(moved.kw, p, rigid, k.load))
         failed = st._replace(status=jnp.int32(LINE_SEARCH_FAILED))
@@ -345,9 +367,16 @@ def run(st, k, *, law, rigid, stall, floor):
         return st, lost
 
     def exact_refresh(st, residual):
-        kw = _conv(st.gap - k.base, k.stiff)
-        return st._replace(kw=kw, gr=_imbalance(kw, st.p, rigid, k.load), exact=jnp.asarray(True),
-                           iterated=residual)  # fmt: skip
+        if st.w is None:
+            kw = _conv(st.gap - k.base, k.stiff)
+            return st._replace(kw=kw, gr=_imbalance(kw, st.p, rigid, k.load),
+                               exact=jnp.asarray(True), iterated=residual)  # fmt: skip
+        # float32: K w from the deflection itself; the gap (and its pressure) re-formed from
+        # it, which also clears the rounding the gap's increments gathered since the last
+        kw, gap = _exact_kw(st.w, k), k.base + st.w
+        p = law.pressure(gap)
+        return st._replace(kw=kw, gap=gap, p=p, gr=_imbalance(kw, p, rigid, k.load),
+                           exact=jnp.asarray(True), iterated=residual)  # fmt: skip
 
     def proceed(st, residual):
         # ReliableUpdates.check on an exact state: restart directions that had drifted
@@ -402,13 +431,19 @@ def run(st, k, *, law, rigid, stall, floor):
 def fields(st, k, law):
     """The interaction pressure, the repulsive and attractive masks and the deflection."""
     rep, att = law.classify(st.gap)
-    return law.pressure(st.gap), rep, att, st.gap - k.base
+    return law.pressure(st.gap), rep, att, _deflection(st, k)
+
+
+def _deflection(st, k):
+    """The deflection: float32 advances it itself (see :func:`_initial`), float64 is exact
+    as ``gap - base``."""
+    return st.gap - k.base if st.w is None else st.w
 
 
 @partial(jax.jit, static_argnames=("law",))
 def moved_fields(st, k, law, offset):
     """:func:`fields` after load control in the one minimisation: the offset moved with
     the gap's mean (:meth:`._free_mean.FreeMean.moved`), the deflection mean-free."""
-    shift = jnp.mean((st.gap - k.base).astype(k.tol.dtype))
+    shift = jnp.mean(_deflection(st, k).astype(k.tol.dtype))
     p, rep, att, deflection = fields(st, k, law)
     return p, rep, att, deflection - shift.astype(deflection.dtype), offset + shift

@@ -56,7 +56,10 @@ took the same number of iterations as conjugate gradients.)
 
 The vector work around the two convolutions is more than half of an iteration's time
 on a CPU at 256²-512², so it is kept lean: the gap is the iterate (the deflection is
-formed only for an exact ``K w``), the interaction pressure is held only on the line
+formed only for an exact ``K w``; in float32 the deflection is advanced beside it and
+``K w`` is formed from it in float64, because the gap's own rounding, ulp(max gap), and a
+float32 FFT's error set a residual floor of ~4e-6 E* at 4096²: 1.7e-6 with the deflection
+and the float64 ``K w``), the interaction pressure is held only on the line
 search's band of sites that can feel the interaction (zero elsewhere), the
 preconditioner's mean comes from sums it already needs, the line search's elastic slope
 ``s.K w`` comes from the directional derivative and the band's pressure, and on NumPy
@@ -181,6 +184,18 @@ class FloorGuard:
         return message
 
 
+def _exact_kw(elastic_pressure, w, out=None):
+    """``K w`` in ``w``'s dtype; float32 deflections are convolved in float64 (a float32
+    FFT's own error, ~1e-7 log2(sites) of the largest pressure, is a residual floor)."""
+    if w.dtype != np.float32:
+        return elastic_pressure(w, out=out)
+    exact = elastic_pressure(w.astype(np.float64))
+    if out is None:
+        return exact.astype(np.float32)
+    np.copyto(out, exact, casting="same_kind")
+    return out
+
+
 def _local(evaluate, cutoff, gap):
     """``evaluate(gap)`` (the interaction's pressure or curvature) only where the gap is
     inside the cutoff; zero beyond it, where every law vanishes. ``gap``: the patch."""
@@ -280,8 +295,11 @@ def minimize_energy(
             w -= np.mean(w)
     else:
         w = np.zeros(n, dtype=h.dtype)
-    kw = elastic_pressure(w)
+    kw = _exact_kw(elastic_pressure, w)
     gap = base + w  # the iterate (w = gap - base is only formed when K w is recomputed)
+    # float32 also advances w itself (as the compiled loop): K w formed from gap - base
+    # carries the gap's rounding, ulp(max gap), a residual floor of ~E* ulp(max gap) / a0
+    deflection = w if h.dtype == np.float32 else None
     del w
     work = Workspace(gap, patch)
     # float32 copies of what the single-precision convolutions take (module docstring)
@@ -329,8 +347,15 @@ def minimize_energy(
             message = f"non-finite state at iteration {it} (check inputs and the interaction)"
             break
         if (update := reliable.check(residual, exact)) == "refresh":
-            w = work.difference(gap, base)  # in the scratch array, consumed at once
-            kw, exact = elastic_pressure(w, out=kw), True
+            if deflection is None:
+                w = work.difference(gap, base)  # in the scratch array, consumed at once
+                kw = elastic_pressure(w, out=kw)
+            else:  # the gap re-formed from w: clears its increments' rounding
+                gap = np.add(base, deflection, out=gap)
+                near = work.interacting(gap, cutoff)
+                p_near = interaction.pressure(gap if near is None else gap[near])
+                kw = _exact_kw(elastic_pressure, deflection, out=kw)
+            exact = True
             gr = imbalance(kw, p_near, near)
             continue
         if update == "restart":
@@ -392,20 +417,27 @@ def minimize_energy(
             break
         exact = False
         gap = work.axpy(gap, alpha, s)
+        if deflection is not None:
+            deflection = work.axpy(deflection, alpha, s)
         kw = work.axpy(kw, alpha, ks)
         gr = imbalance(kw, p_near, near)
 
     if free:  # the offset moved with the gap's mean
-        offset, base = free.moved(offset, gap, base)
+        moved, base = free.moved(offset, gap, base)
+        if deflection is not None:
+            deflection = deflection - (moved - offset)
+        offset = moved
+    if deflection is None:
+        deflection = gap - base
     if patch is not None:  # the patch of the work grid (no pressure on the padding)
-        gap, base = gap[patch], base[patch]
+        gap, deflection = gap[patch], deflection[patch]
     p_int = _local(interaction.pressure, cutoff, gap)
     rep, att = interaction.classify(gap)
     return make_result(
         h,
         substrate,
         np.reshape(p_int, shape),
-        np.reshape(gap - base, shape),
+        np.reshape(deflection, shape),
         offset,
         it,
         residual,
