@@ -241,9 +241,12 @@ class Substrate:
         of :math:`k(q)` over all Fourier modes (a rigid uniform mode counts as zero).
         About :math:`1.20\,E^*/a_0` for the periodic half-space, :math:`1.16\,E^*/a_0` on
         a free boundary's padded grid."""
-        k = np.where(np.isinf(self.stiffness), 0.0, self.stiffness)
-        nx, ny = self.work_shape
-        return float(_sum_over_modes(np, k, ny)) / (nx * ny)
+        cached = self._cache.get("self_stiffness")
+        if cached is None:  # (48 ms at 4096², and every solve asks: computed once)
+            k = np.where(np.isinf(self.stiffness), 0.0, self.stiffness)
+            nx, ny = self.work_shape
+            cached = self._cache["self_stiffness"] = float(_sum_over_modes(np, k, ny)) / (nx * ny)
+        return cached
 
     def multipliers(self, like) -> FourierMultipliers:
         """Stiffness and compliance multipliers on the namespace, device and dtype of ``like``.
@@ -290,8 +293,15 @@ class Substrate:
 
     def coarsened(self) -> Substrate:
         """The same substrate on the patch coarsened 2 × 2 (``nx//2 × ny//2``, 2 a0)."""
-        nx, ny = self.shape
-        return dataclasses.replace(self, shape=(nx // 2, ny // 2), pixel_size=2 * self.pixel_size)
+        coarse = self._cache.get("coarsened")
+        if coarse is None:  # kept: a nested solve asks for every level each time, and a new
+            # substrate would compute and upload its multipliers again (the substrate is frozen)
+            nx, ny = self.shape
+            coarse = dataclasses.replace(
+                self, shape=(nx // 2, ny // 2), pixel_size=2 * self.pixel_size
+            )
+            self._cache["coarsened"] = coarse
+        return coarse
 
     def _check(self, name, field_):
         if tuple(field_.shape) != self.shape:
