@@ -70,6 +70,8 @@ __all__ = [
     "floor_verdict",
     "gap_at_pressure",
     "largest_attraction",
+    "lift_shape",
+    "pair_coefficients",
     "lowest_smooth_offset",
     "nests",
     "physical_pressure_scale",
@@ -381,3 +383,34 @@ def uniform_shift(mean_gradient, k_u, reach, xp=np):
     elastic floor ``E* pi / L``; 1e9 E* then asks for a 1e10 a0 step) from a step that only
     the line search's tiny ``alpha`` can hold, which then stalls every other mode."""
     return xp.clip(mean_gradient / k_u, -reach, reach)
+
+
+def lift_shape(v, stiff, xp=np):
+    """The smooth solver's second uniform direction under load control: ``(u, ok)`` with
+    ``u = 1 - v / m`` off the ``stiff`` sites (zero on them), ``v = G (1_S - s)`` the
+    deflection of a uniform pressure on them and ``m`` its mean there: the body lifted
+    at fixed contact (:func:`contact_mode`, whose sites are pinned; here the stiff sites
+    move with the block preconditioner's diagonal). ``ok``: some site is stiff and
+    ``m > 0``; else ``u`` is zero. ``xp`` as in :func:`contact_mode`."""
+    count = xp.sum(stiff)
+    m = xp.sum(xp.where(stiff, v, 0.0)) / xp.maximum(count, 1)
+    ok = (count > 0) & (count < stiff.size) & (m > 0)
+    safe = xp.where(ok, m, 1.0)
+    return xp.where(stiff | ~ok, 0.0, 1.0 - v / safe.astype(v.dtype)), ok
+
+
+def pair_coefficients(h00, h01, h11, g0, g1, reach, xp=np):
+    r"""The preconditioner's block on the two uniform directions ``1`` and ``u``
+    (:func:`lift_shape`): ``(c0, c1)`` solving the Galerkin system
+    :math:`\begin{pmatrix} h_{00} & h_{01} \\ h_{01} & h_{11} \end{pmatrix} c = g`
+    (per site: ``h00 = max(mean V''+, E* pi / L)``, ``h01 = mean(V''+ u)``,
+    ``h11 = (u K u)/n + mean(V''+ u^2)``, ``V''+`` the interaction's curvature where
+    positive; ``g = (mean gr, mean u gr)``), each at most ``reach`` (length) in magnitude
+    (:func:`uniform_shift`). ``h`` is positive definite by Cauchy-Schwarz when ``u K u > 0``;
+    a determinant that is not positive gives ``c1 = 0``, ``c0 = g0 / h00``."""
+    det = h00 * h11 - h01 * h01
+    good = det > 0
+    safe = xp.where(good, det, 1.0)
+    c0 = xp.where(good, (h11 * g0 - h01 * g1) / safe, g0 / h00)
+    c1 = xp.where(good, (h00 * g1 - h01 * g0) / safe, 0.0)
+    return xp.clip(c0, -reach, reach), xp.clip(c1, -reach, reach)
