@@ -182,7 +182,8 @@ def lift_mode(interaction, gap, substrate, work):
     :func:`.adhesive_rules.pair_coefficients`), or None when it has none (no stiff site,
     every site stiff). Two float32 convolutions."""
     near = work.interacting(gap, interaction.cutoff)
-    curvature = np.maximum(interaction.curvature(gap if near is None else gap[near]), 0.0)
+    curvature = interaction.curvature(gap if near is None else gap[near])
+    curvature = np.where(curvature > 0, curvature, 0.0)  # (a NaN counts as 0, as in k_u)
     if near is None:
         d = curvature
     else:

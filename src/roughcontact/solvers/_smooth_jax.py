@@ -359,7 +359,8 @@ def run(st, k, *, law, rigid, stall, floor):
         st = st._replace(k_u=jnp.where(due, k_u, st.k_u))
 
         def lift():  # _free_mean.lift_mode: two float32 convolutions
-            d = jnp.maximum(law.curvature(st.gap), 0.0)
+            c = law.curvature(st.gap)
+            d = jnp.where(c > 0, c, 0.0)  # (a NaN counts as 0, as in k_u)
             stiff = d > (STIFF_FRACTION * k.self_stiffness).astype(dt)
             a = (tot(stiff) / n).astype(dt)
             v = _conv(jnp.where(stiff, 1.0 - a, -a).astype(f32), k.green32).astype(dt)
