@@ -126,7 +126,8 @@ def test_cold_load_control_starts_from_the_coarse_grid(monkeypatch, la, load):
 
 def test_hard_core_cold_load_control_starts_from_the_coarse_grid(monkeypatch):
     # the bounded solver's free mode takes the same nested start (measured at 128², la 0.005,
-    # load 0: 31 -> 29 iterations here against 17 offset-controlled; 256²: 65 -> 54 vs 23)
+    # load 0: 31 -> 29 iterations here against 17 offset-controlled; 256²: 65 -> 54 vs 23;
+    # with the contact's lift as the uniform block, i39d: 19 -> 19 here, 30 -> 27 at 256²)
     h, sub, _ = _problem(128, 0.005)
     law = rc.Exponential(work_of_adhesion=0.005, range=1.0)
     res = rc.solve(h, sub, law, load=0.0)

@@ -90,6 +90,12 @@ class State(NamedTuple):
     mu: object  # the top's multiplier of the mean and ...
     free: object  # ... its free sites (bool, 2D): the traction of the result
     status: object  # RUNNING or why the loop stopped (int32)
+    # load control: the uniform mode along the contact's response (FreeMean.add_on,
+    # adhesive_rules.contact_mode): the wall's sites it was computed on, u and k
+    contact: object = None  # (bool, 2D)
+    contact_u: object = None
+    contact_k: object = None
+    has_contact: object = None  # whether they are set (bool)
 
 
 def project(v, lower, rigid, acc):
@@ -164,7 +170,8 @@ def _initial(w, k, rigid):
         active_old=jnp.zeros(w.shape, bool), directions=false, has_old=false,
         exact=jnp.asarray(True), it=zero_i, residual=inf, reliable=inf, since=zero_i,
         iterated=inf, best=inf, since_best=zero_i, mu=jnp.zeros((), acc),
-        free=jnp.ones(w.shape, bool), status=zero_i,
+        free=jnp.ones(w.shape, bool), status=zero_i, contact=jnp.zeros(w.shape, bool),
+        contact_u=jnp.ones_like(w), contact_k=jnp.ones((), acc), has_contact=false,
     )  # fmt: skip
 
 
@@ -265,12 +272,25 @@ def run(st, k, *, law, rigid, stall):
             z = jnp.where(free, z - masked_mean(z, free, 0.0).astype(dt), 0.0)
         lost = jnp.asarray(False)
         if free_mode:  # the uniform block on the free sites (FreeMean.add_on)
-            n_free = tot(free)
-            k_u = rules.wall_uniform_stiffness(1.0 - n_free / free.size, k.self_stiffness,
-                                               k.modulus, k.size, xp=jnp)  # fmt: skip
-            mean = tot(rr) / jnp.maximum(n_free, 1.0)  # rr is 0 off the free sites
-            shift = rules.uniform_shift(mean, k_u, k.reach, xp=jnp)
-            z = jnp.where(free, z + shift.astype(dt), 0.0)
+            n_act = tot(active)
+            floor = rules.wall_uniform_stiffness(0.0, k.self_stiffness, k.modulus, k.size,
+                                                 xp=jnp)  # fmt: skip
+            stale = ~st.has_contact | rules.contact_stale(tot(active != st.contact), n_act,
+                                                          xp=jnp)  # fmt: skip
+
+            def fresh():
+                a = (n_act / active.size).astype(dt)
+                v = single(jnp.where(active, 1.0 - a, -a), k.green32)
+                u, k_c = rules.contact_mode(v, active, floor, xp=jnp)
+                return active, u, k_c.astype(acc)
+
+            contact, u, k_c = lax.cond(
+                stale, fresh, lambda: (st.contact, st.contact_u, st.contact_k))
+            st = st._replace(contact=contact, contact_u=u, contact_k=k_c,
+                             has_contact=jnp.asarray(True))  # fmt: skip
+            u = jnp.where(free, u, 0.0)
+            c = rules.uniform_shift(dot(u, rr) / rr.size, k_c, k.reach, xp=jnp)
+            z = jnp.where(free, z + c.astype(dt) * u, 0.0)
             lost = rules.tension_lost(law, k.load, jnp.min(gap).astype(acc), k.peak, xp=jnp)
         restart = ~st.directions | (it % k.restart_every == 0) | ~st.has_old
         gz = dot(rr, z)

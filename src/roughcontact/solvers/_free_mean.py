@@ -12,10 +12,17 @@ moves in all its modes, the offset with it, and the minimum is the equilibrium t
 ``N`` and is stable under load control (a minimum of the enthalpy), found in one nonlinear
 CG run instead of a root search over nested solves (:mod:`.load_control`). ``K`` kills the
 uniform mode (rigid), so ``K s`` and ``K w`` are those of the offset-controlled loop; only the
-preconditioner needs a uniform block: ``z += mean(gr) / k_u`` with ``k_u``
-(:func:`uniform_stiffness`) a fraction of the interaction's mean curvature on its repulsive
-sites, at least the longest wavelength's elastic stiffness ``E* pi / L``; the block
-preconditioner takes the mean-free ``gr - mean(gr)`` (a block-diagonal split).
+preconditioner needs a uniform block. It spans two directions (:meth:`FreeMean.add` with
+``K z``): the uniform one and the body lifted at fixed contact, ``u = 1 - G(1_S - s)/m``
+off the stiff sites ``S`` (zero on them; :func:`lift_mode`), ``z += c0 + c1 u`` with
+``(c0, c1)`` the Galerkin solution of the 2x2 system of the Hessian ``K + V''+`` on the
+two (:func:`.adhesive_rules.pair_coefficients`), refreshed every ``refresh_every``
+iterations (two float32 convolutions) and ``K z += c1 K u``. A uniform shift alone (the
+rule before, :func:`add_uniform`, ``mean(gr) / k_u`` with ``k_u`` a fraction of the
+interaction's mean curvature, :func:`uniform_stiffness`) is resisted by every stiff
+contact, so the load not carried fell only 10x per ~14 iterations in a path step (256²,
+ℓa 0.005) against ~8 for an offset step. The block preconditioner takes the mean-free
+``gr - mean(gr)`` (a block-diagonal split).
 
 Cost (iterations, cold from first contact, ``benchmarks/adhesive_load.py``): 1.1-1.9x the
 offset-controlled cold solve ending in the same state at ℓa 0.05 (128², 256²), 1.3-2x at
@@ -24,8 +31,17 @@ offset-controlled cold solve ending in the same state at ℓa 0.05 (128², 256²
 controlled solve starts at its offset. From 128² on a cold solve therefore starts from the
 same load solved on the 2x2-coarsened grid (:func:`.load_control._coarse_start`): 0.5-1.5x
 the offset-controlled solve's iterations on the fine grid, 0.6-1.4x its time at 256² with
-the coarse solve. A warm path step costs 1.1-1.5x an offset step.
+the coarse solve (with the lift direction: 0.5-1.0x). A warm path step costs 1.05-1.1x
+an offset step (128²-256², ℓa 0.005 and 0.05; 1.08-1.53x with the uniform shift alone).
 The nested root search it replaces took 10-30x.
+
+The bounded solver (:mod:`.bounded`, a hard core: the wall's sites are pinned) takes the
+uniform mode along the body's response at fixed contact, ``u = 1 - G(1_A - a)/m``
+(:func:`.adhesive_rules.contact_mode`: 1 far from the contacts, about 0 on them), with its
+stiffness from the contact's Rayleigh quotient, rather than a uniform shift of the free
+sites, which bends the surface at every contact's edge and left the offset creeping
+(256², Exponential w = 0.005 E* a0, cold load 0: 54 -> 27 fine-grid iterations against 23
+offset-controlled; hard-core cases at 128²-256² 2654 -> 1941 in all, benchmarks/README.md).
 
 The compiled loops (:mod:`._smooth_jax`, :mod:`._bounded_jax`) take the same method with
 the same rules (:mod:`.adhesive_rules`' scalar functions on 0-d device arrays) inside their
@@ -38,8 +54,11 @@ import numpy as np
 
 from .._validate import ParameterError
 from . import adhesive_rules as rules
+from .fourier import compliance_operator, in_single_precision, stiffness_operator
+from .reductions import dot, total
+from .smooth_rules import STIFF_FRACTION
 
-__all__ = ["FreeMean", "add_uniform", "uniform_stiffness"]
+__all__ = ["FreeMean", "add_uniform", "lift_mode", "uniform_stiffness"]
 
 
 class FreeMean:
@@ -49,6 +68,8 @@ class FreeMean:
         self.load, self.law, self.substrate, self.work = float(load), interaction, substrate, work
         self.reach = max(float(np.std(heights)), substrate.pixel_size)
         self.k_u, self.detached = None, None
+        self.contact = None  # the bounded solver's (wall sites, u, k): add_on
+        self.lift = None  # the smooth solver's (u, K u, h): add
         self.peak = rules.attraction_peak_gap(interaction) if self.load < 0 else 0.0
 
     @classmethod
@@ -68,29 +89,60 @@ class FreeMean:
         """``gr - mean(gr)``: what the block preconditioner takes."""
         return gr - np.mean(gr)
 
-    def add(self, z, gr, gap, it, refresh_every):
-        """``z`` with its uniform block (:func:`add_uniform`); ``k_u`` refreshed with the
-        preconditioner's stiff sites. None, with ``detached`` the message, once a tensile
-        load has pulled every site beyond the law's cutoff (no force left to balance it:
-        the surfaces separate for good)."""
+    def add(self, z, gr, gap, it, refresh_every, kz=None):
+        """``z`` with its uniform block; ``k_u`` refreshed with the preconditioner's stiff
+        sites. With ``kz`` (``K z``, updated in place) the block spans two directions, the
+        uniform one and the body's lift at fixed contact (:func:`lift_mode`, refreshed
+        with ``k_u``): ``z + c0 + c1 u``, ``K z + c1 K u``
+        (:func:`.adhesive_rules.pair_coefficients`); without it :func:`add_uniform`. None,
+        with ``detached`` the message, once a tensile load has pulled every site beyond
+        the law's cutoff (no force left to balance it: the surfaces separate for good)."""
         if self._lost(gap, it):
             return None
         if self.k_u is None or it % refresh_every == 1:
             self.k_u = uniform_stiffness(self.law, gap, self.substrate, self.work)
-        return add_uniform(z, gr, self.k_u, self.reach, self.work)
+            self.lift = None if kz is None else lift_mode(self.law, gap, self.substrate,
+                                                         self.work)  # fmt: skip
+        if kz is None or self.lift is None:
+            return add_uniform(z, gr, self.k_u, self.reach, self.work)
+        u, ku, h = self.lift
+        n = gap.shape[0]
+        c0, c1 = rules.pair_coefficients(*h, total(gr) / n, dot(u, gr) / n, self.reach)
+        z += float(c0) + float(c1) * u
+        kz += (float(c1) * ku).astype(kz.dtype, copy=False)
+        return z
 
-    def add_on(self, z, rr, gap, free, it):
-        """The bounded solver's uniform block (:mod:`.bounded`): ``z + shift`` with shift
-        the mean of ``rr`` over the ``free`` sites over ``k_u``
-        (:func:`.adhesive_rules.wall_uniform_stiffness`; bounded; on the wall's active face
-        the caller zeroes it). None, with ``detached``, as in :meth:`add`."""
+    def add_on(self, z, rr, gap, free, it, green=None):
+        """The bounded solver's uniform block (:mod:`.bounded`): ``z + c u`` on the free
+        sites, ``u`` the body's shape lifted at fixed contact and ``c = (u . rr) / (n k)``
+        (:func:`.adhesive_rules.contact_mode`; ``green``: the float32 compliance, which
+        computes ``u`` when :func:`.adhesive_rules.contact_stale` says; ``c`` at most
+        ``reach``; on the wall's active face the caller zeroes ``z``). Without ``green``
+        the rule before: a uniform shift of the free sites by their mean of ``rr`` over
+        :func:`.adhesive_rules.wall_uniform_stiffness`. None, with ``detached``, as in
+        :meth:`add`."""
         if self._lost(gap, it):
             return None
-        n_free, sub = int(np.count_nonzero(free)), self.substrate
-        k_u = rules.wall_uniform_stiffness(1.0 - n_free / free.shape[0], sub.self_stiffness,
-                                           sub.contact_modulus, max(sub.shape) * sub.pixel_size)
-        mean = float(np.sum(rr)) / max(n_free, 1)  # rr is 0 off the free sites
-        return z + float(rules.uniform_shift(mean, k_u, self.reach))
+        n, sub = free.shape[0], self.substrate
+        n_free = int(np.count_nonzero(free))
+        floor = rules.wall_uniform_stiffness(0.0, sub.self_stiffness, sub.contact_modulus,
+                                             max(sub.shape) * sub.pixel_size)  # fmt: skip
+        if green is None:
+            k_u = rules.wall_uniform_stiffness(1.0 - n_free / n, sub.self_stiffness,
+                                               sub.contact_modulus,
+                                               max(sub.shape) * sub.pixel_size)  # fmt: skip
+            mean = float(np.sum(rr)) / max(n_free, 1)  # rr is 0 off the free sites
+            return z + float(rules.uniform_shift(mean, k_u, self.reach))
+        active = ~free
+        if self.contact is None or rules.contact_stale(
+                int(np.count_nonzero(active != self.contact[0])), n - n_free):  # fmt: skip
+            a = (n - n_free) / n
+            v = green(np.where(active, 1.0 - a, -a).astype(rr.dtype))
+            self.contact = (active, *rules.contact_mode(v, active, floor))
+        _, u, k = self.contact
+        c = float(rules.uniform_shift(dot(np.where(free, u, 0.0), rr) / n, k, self.reach))
+        z += np.where(free, c * u, 0.0)
+        return z
 
     def _lost(self, gap, it) -> bool:
         """Whether the tensile load is lost (:func:`.adhesive_rules.tension_lost`); then
@@ -121,6 +173,36 @@ def uniform_stiffness(interaction, gap, substrate, work) -> float:
     total = float(np.sum(np.where(curvature > 0, curvature, 0.0)))
     size = max(substrate.shape) * substrate.pixel_size
     return rules.uniform_stiffness(total / gap.shape[0], substrate.contact_modulus, size)
+
+
+def lift_mode(interaction, gap, substrate, work):
+    """The smooth solver's second uniform direction in the state ``gap``: ``(u, K u, h)``
+    (:func:`.adhesive_rules.lift_shape` on the preconditioner's stiff sites, ``V'' >
+    STIFF_FRACTION K_ii``; ``h = (h00, h01, h11)`` of
+    :func:`.adhesive_rules.pair_coefficients`), or None when it has none (no stiff site,
+    every site stiff). Two float32 convolutions."""
+    near = work.interacting(gap, interaction.cutoff)
+    curvature = interaction.curvature(gap if near is None else gap[near])
+    curvature = np.where(curvature > 0, curvature, 0.0)  # (a NaN counts as 0, as in k_u)
+    if near is None:
+        d = curvature
+    else:
+        d = np.zeros_like(gap)
+        d[near] = curvature
+    stiff = d > STIFF_FRACTION * substrate.self_stiffness
+    n, count = gap.shape[0], int(np.count_nonzero(stiff))
+    if count in (0, n):
+        return None
+    a = count / n
+    green = in_single_precision(compliance_operator(substrate, work_grid=True))
+    u, ok = rules.lift_shape(green(np.where(stiff, 1.0 - a, -a).astype(gap.dtype)), stiff)
+    if not ok:
+        return None
+    ku = in_single_precision(stiffness_operator(substrate, work_grid=True))(u)
+    floor = substrate.contact_modulus * np.pi / (max(substrate.shape) * substrate.pixel_size)
+    du = d * u
+    h = (max(total(d) / n, floor), total(du) / n, (dot(u, ku) + dot(du, u)) / n)
+    return u, ku, h
 
 
 def add_uniform(z, gr, k_u, reach, work):

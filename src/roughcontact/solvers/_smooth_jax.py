@@ -7,8 +7,9 @@ preconditioner of Green's function and stiff-site diagonal, the line search of
 floor guard), for heights given as JAX arrays, under displacement control on a periodic
 substrate, or under load control with the load inside the one minimisation
 (:mod:`._free_mean`'s method: the gap's uniform mode free, gradient ``K w - p_int + N``,
-the preconditioner's uniform block ``mean(gr)/k_u``, a lost tensile load; its rules
-:mod:`.adhesive_rules`' functions, called on 0-d device arrays). Its constants are those
+the preconditioner's block on the uniform mode and the lift at fixed contact, a lost
+tensile load; its rules :mod:`.adhesive_rules`' functions, called on 0-d device arrays).
+Its constants are those
 of :mod:`.smooth_rules` and :mod:`.loop_control`, shared with the NumPy loop. The whole
 solve is one XLA program: the state is a
 :class:`State` record of device arrays, every decision (the line search's bracket and
@@ -112,6 +113,12 @@ class State(NamedTuple):
     floor_since: object  # ... the iterations since the reference (int32)
     status: object  # RUNNING or why the loop stopped (int32)
     k_u: object = None  # the uniform mode's stiffness (load control; None: offset control)
+    # load control: the second uniform direction, the lift at fixed contact (FreeMean.add,
+    # _free_mean.lift_mode), its K u, the block's (h00, h01, h11) and whether it is set
+    lift_u: object = None
+    lift_ku: object = None
+    lift_h: object = None
+    has_lift: object = None
     w: object = None  # float32: the deflection, advanced with the gap (None in float64)
 
 
@@ -159,7 +166,10 @@ def prepare(w, substrate, interaction, *, base, tol, max_iter, restart_every, re
         k = k._replace(stiff_exact=substrate.multipliers(base.astype(acc))[_STIFFNESS])
     st = _initial(w, k, interaction, bool(substrate.rigid_mean))
     if load is not None:
-        st = st._replace(k_u=scalar(1.0))  # set at the first iteration
+        # set at the first iteration (two buffers: the state's are donated)
+        st = st._replace(k_u=scalar(1.0), lift_u=jnp.zeros_like(st.gap),
+                         lift_ku=jnp.zeros_like(st.gap),
+                         lift_h=jnp.ones((3,), acc), has_lift=jnp.asarray(False))  # fmt: skip
     return st, k
 
 
@@ -326,7 +336,13 @@ def run(st, k, *, law, rigid, stall, floor):
             mean = tot(st.gr) / n
             z, kz = precondition(st, st.gr - mean.astype(dt))
             st, lost = uniform_block(st, it)
-            z = z + rules.uniform_shift(mean, st.k_u, k.reach, xp=jnp).astype(dt)
+            h = st.lift_h
+            c0, c1 = rules.pair_coefficients(h[0], h[1], h[2], mean, dot(st.lift_u, st.gr) / n,
+                                             k.reach, xp=jnp)  # fmt: skip
+            c0 = jnp.where(st.has_lift, c0, rules.uniform_shift(mean, st.k_u, k.reach, xp=jnp))
+            c1 = jnp.where(st.has_lift, c1, 0.0).astype(dt)
+            z = z + c0.astype(dt) + c1 * st.lift_u
+            kz = kz + c1 * st.lift_ku
         else:
             z, kz = precondition(st, st.gr)
         gz = dot(st.gr, z)
@@ -363,6 +379,24 @@ def run(st, k, *, law, rigid, stall, floor):
         mean_curv = lax.cond(due, curvature, lambda: jnp.zeros((), acc))
         k_u = rules.uniform_stiffness(mean_curv, k.modulus, k.size, xp=jnp)
         st = st._replace(k_u=jnp.where(due, k_u, st.k_u))
+
+        def lift():  # _free_mean.lift_mode: two float32 convolutions
+            c = law.curvature(st.gap)
+            d = jnp.where(c > 0, c, 0.0)  # (a NaN counts as 0, as in k_u)
+            stiff = d > (STIFF_FRACTION * k.self_stiffness).astype(dt)
+            a = (tot(stiff) / n).astype(dt)
+            v = _conv(jnp.where(stiff, 1.0 - a, -a).astype(f32), k.green32).astype(dt)
+            u, ok = rules.lift_shape(v, stiff, xp=jnp)
+            ku = _conv(u.astype(f32), k.stiff32).astype(dt)
+            floor = k.modulus * jnp.pi / k.size
+            du = d * u
+            h = jnp.stack([jnp.maximum(tot(d) / n, floor), tot(du) / n,
+                           (dot(u, ku) + dot(du, u)) / n]).astype(acc)  # fmt: skip
+            return u, ku, h, ok
+
+        u, ku, h, ok = lax.cond(due, lift, lambda: (st.lift_u, st.lift_ku, st.lift_h,
+                                                      st.has_lift))  # fmt: skip
+        st = st._replace(lift_u=u, lift_ku=ku, lift_h=h, has_lift=ok)
         lost = rules.tension_lost(law, k.load, jnp.min(st.gap).astype(acc), k.peak, xp=jnp)
         return st, lost
 

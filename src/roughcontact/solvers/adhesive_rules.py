@@ -58,6 +58,10 @@ __all__ = [
     "FLOOR_ULPS",
     "EPS64",
     "attraction_peak_gap",
+    "CONTACT_FRACTION",
+    "CONTACT_REFRESH",
+    "contact_mode",
+    "contact_stale",
     "FULL_CONTACT_MARGIN",
     "NESTED_MIN_SIZE",
     "NESTED_TOL",
@@ -66,6 +70,8 @@ __all__ = [
     "floor_verdict",
     "gap_at_pressure",
     "largest_attraction",
+    "lift_shape",
+    "pair_coefficients",
     "lowest_smooth_offset",
     "nests",
     "physical_pressure_scale",
@@ -317,6 +323,58 @@ def wall_uniform_stiffness(wall_fraction, self_stiffness, contact_modulus, size,
     return xp.maximum(WALL_FRACTION * wall_fraction * self_stiffness, floor)
 
 
+#: The bounded solver's uniform block follows the contact's response (:func:`contact_mode`),
+#: recomputed (one float32 convolution) when more than this fraction of the wall's sites
+#: changed since it was last computed. Measured (Exponential w = 0.005 E* a0, range a0,
+#: 256², cold load 0, benchmarks/README.md): 0 (every change) 32 iterations and 38
+#: convolutions, 0.02 33 and 23, 0.1 35 and 16.
+CONTACT_REFRESH = 0.1
+#: :func:`contact_mode`'s stiffness is this fraction of its Rayleigh quotient (which bounds
+#: the contact stiffness from above: the uniform pressure is a trial field). Measured
+#: (cold load -1e-3 / 0 / 1e-3, Exponential w 0.005 and 0.05 range a0, MaugisDugdale w 0.05
+#: range a0 and w 0.01 range a0/2; fine-grid iterations summed over the 12 cases): 256²
+#: 0.25 661, 0.5 661, 1.0 738, the rule before (:func:`wall_uniform_stiffness`) 938; 128²
+#: 475, 361, 390, before 441.
+CONTACT_FRACTION = 0.5
+
+
+def contact_stale(changed, n_active, xp=np):
+    """Whether the contact's response is to be recomputed: ``changed`` sites entered or left
+    the wall since, of ``n_active`` there now (:data:`CONTACT_REFRESH`; ``xp`` as in
+    :func:`contact_mode`)."""
+    return changed > CONTACT_REFRESH * xp.maximum(n_active, 1)
+
+
+def contact_mode(v, active, floor, xp=np):
+    r"""The bounded solver's uniform mode under load control: ``(u, k)``.
+
+    ``v = G (1_A - a)`` (length) is the deflection of a uniform pressure on the wall's
+    sites ``active`` (``a`` their fraction; ``G`` the compliance, which takes no mean), so
+    ``u = 1 - v / m`` (``m`` the mean of ``v`` over the wall) is the shape of the body
+    lifted at fixed contact: 1 far from it, about 0 on it. A uniform shift of the free
+    sites alone (the rule before, :func:`wall_uniform_stiffness`) bends the surface at
+    every contact's edge; ``u`` does not, and its stiffness per site is
+    :math:`u K u / n = a / m` (``K u = -(1_A - a)/m``, ``sum_A u = 0``): the Rayleigh
+    quotient of the contact stiffness under a uniform contact pressure; ``k`` is
+    :data:`CONTACT_FRACTION` of it. That can be far below the longest wavelength's
+    stiffness :math:`E^* \pi / L` (256², 5 % on the wall: 0.003 against 0.012), which
+    the rule before used as its floor. No site on the wall: ``u = 1``, ``k = floor``
+    (:math:`E^* \pi / L`).
+    ``xp``: NumPy, or a compiled loop's namespace (then ``v`` and ``active`` are its
+    arrays, the result too).
+    """
+    count = xp.sum(active)
+    n = active.size
+    if xp is np and not count:
+        return np.ones_like(v), floor
+    m = xp.sum(xp.where(active, v, 0.0)) / xp.maximum(count, 1)
+    touching = (count > 0) & (m > 0)
+    safe = xp.where(touching, m, 1.0)
+    u = xp.where(touching, 1.0 - v / safe.astype(v.dtype), 1.0)
+    k = xp.where(touching, CONTACT_FRACTION * count / n / safe, floor)
+    return u, k
+
+
 def uniform_shift(mean_gradient, k_u, reach, xp=np):
     """The preconditioned gradient's uniform part (length): ``mean(gr) / k_u``, at most
     ``reach`` (the heights' rms) in magnitude.
@@ -325,3 +383,34 @@ def uniform_shift(mean_gradient, k_u, reach, xp=np):
     elastic floor ``E* pi / L``; 1e9 E* then asks for a 1e10 a0 step) from a step that only
     the line search's tiny ``alpha`` can hold, which then stalls every other mode."""
     return xp.clip(mean_gradient / k_u, -reach, reach)
+
+
+def lift_shape(v, stiff, xp=np):
+    """The smooth solver's second uniform direction under load control: ``(u, ok)`` with
+    ``u = 1 - v / m`` off the ``stiff`` sites (zero on them), ``v = G (1_S - s)`` the
+    deflection of a uniform pressure on them and ``m`` its mean there: the body lifted
+    at fixed contact (:func:`contact_mode`, whose sites are pinned; here the stiff sites
+    move with the block preconditioner's diagonal). ``ok``: some site is stiff and
+    ``m > 0``; else ``u`` is zero. ``xp`` as in :func:`contact_mode`."""
+    count = xp.sum(stiff)
+    m = xp.sum(xp.where(stiff, v, 0.0)) / xp.maximum(count, 1)
+    ok = (count > 0) & (count < stiff.size) & (m > 0)
+    safe = xp.where(ok, m, 1.0)
+    return xp.where(stiff | ~ok, 0.0, 1.0 - v / safe.astype(v.dtype)), ok
+
+
+def pair_coefficients(h00, h01, h11, g0, g1, reach, xp=np):
+    r"""The preconditioner's block on the two uniform directions ``1`` and ``u``
+    (:func:`lift_shape`): ``(c0, c1)`` solving the Galerkin system
+    :math:`\begin{pmatrix} h_{00} & h_{01} \\ h_{01} & h_{11} \end{pmatrix} c = g`
+    (per site: ``h00 = max(mean V''+, E* pi / L)``, ``h01 = mean(V''+ u)``,
+    ``h11 = (u K u)/n + mean(V''+ u^2)``, ``V''+`` the interaction's curvature where
+    positive; ``g = (mean gr, mean u gr)``), each at most ``reach`` (length) in magnitude
+    (:func:`uniform_shift`). ``h`` is positive definite by Cauchy-Schwarz when ``u K u > 0``;
+    a determinant that is not positive gives ``c1 = 0``, ``c0 = g0 / h00``."""
+    det = h00 * h11 - h01 * h01
+    good = det > 0
+    safe = xp.where(good, det, 1.0)
+    c0 = xp.where(good, (h11 * g0 - h01 * g1) / safe, g0 / h00)
+    c1 = xp.where(good, (h00 * g1 - h01 * g0) / safe, 0.0)
+    return xp.clip(c0, -reach, reach), xp.clip(c1, -reach, reach)

@@ -24,8 +24,10 @@ and of the bounded CG of Bugnicourt et al. (Tribol. Lett. 66, 29 (2018)):
   enough step: a preconditioned direction, once projected, need not descend.
 
 Under load control (``load``, NumPy, periodic, rigid mean) the multiplier is the load,
-``μ = -N``, and the mean of ``w`` (the offset) is free, with a uniform block in the
-preconditioner (:mod:`._free_mean`): one minimisation instead of nested solves.
+``μ = -N``, and the mean of ``w`` (the offset) is free, with a block in the
+preconditioner along the body's lift at fixed contact (:mod:`._free_mean`,
+:func:`.adhesive_rules.contact_mode`: one more float32 convolution when the wall's sites
+change by more than a tenth): one minimisation instead of nested solves.
 
 Convergence measure (``residual``): the largest force imbalance on a free site,
 ``max |K w - p_int(g) - μ| / E*``; sites on the active face satisfy the contact
@@ -246,7 +248,7 @@ def minimize_energy_bounded(
         if rigid:
             z = np.where(free, z - masked_mean(z, free, lambda: 0.0), 0.0)
         if free_mode is not None:  # the uniform block on the free sites
-            if (z := free_mode.add_on(z, rr, gap, free, it)) is None:
+            if (z := free_mode.add_on(z, rr, gap, free, it, green)) is None:
                 status, message = SolveStatus.DETACHED, free_mode.detached
                 break
             z = np.where(free, z, 0.0)

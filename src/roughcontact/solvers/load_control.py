@@ -6,8 +6,9 @@ mean (and for a law without hard core a load within :data:`ONE_MINIMISATION_LOAD
 pressure scales), the load goes inside the one minimisation (:mod:`._free_mean`: the uniform
 mode of the gap is free and its force is the load not carried; on the wall the multiplier is
 the load): about the cost of an offset-controlled solve (cold from 128² on started from the
-2x2-coarsened grid's state, :func:`_coarse_start`: 0.5-1.5x its iterations at 128²-256²;
-1.1-1.5x a warm path step; against 10-30x for the search below: benchmarks/README.md).
+2x2-coarsened grid's state, :func:`_coarse_start`: 0.5-1.0x its iterations at 128²-256²
+for a smooth law, 0.6-1.6x for a hard core; 1.05-1.1x a warm path step; against 10-30x
+for the search below: benchmarks/README.md).
 Where that fails (a non-finite state, a failed line search), and for every other case, the
 root search over nested solves below.
 

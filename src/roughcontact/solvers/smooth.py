@@ -379,7 +379,7 @@ def minimize_energy(
             rigid,
             out=z, work=work, fast=fast, result=fast_result, background=overlap and not free,
         )  # fmt: skip
-        if free and (z := free.add(z, gr, gap, it, refresh_every)) is None:
+        if free and (z := free.add(z, gr, gap, it, refresh_every, kz=kz)) is None:
             status, message = SolveStatus.DETACHED, free.detached
             break
         gz = _dot(gr, z)
