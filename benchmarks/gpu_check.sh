@@ -20,9 +20,9 @@
 #   PART=one benchmarks/gpu_check.sh              # issue 38's item 5 in one call of
 #                                                   # <= 8 min (a session's whole device
 #                                                   # budget is 15 min), then PART=two
-#                                                   # (<= 7 min): GPU/CPU at CPU_SIZE², the
+#                                                   # (<= 9 min): GPU/CPU at CPU_SIZE², the
 #                                                   # Dask study, float32's floor, the
-#                                                   # path's phases
+#                                                   # path's phases, a loop's trace
 # The two device calls to make: PART=one, then PART=two (both ran 2026-11-27 on an H200,
 # PART=two's steps in separate calls; see benchmarks/README.md). The older split,
 # PART=jax + PART=second (the paper task and the 512² task on the GPU; PART=all adds the
@@ -60,7 +60,7 @@ step() {  # step SECONDS TITLE COMMAND...: run with a limit, log the time it too
     cpu=(--cpu-sizes)
     [ -n "$CPU_SIZE" ] && [ "$PART" != second ] && cpu=(--cpu-sizes "$CPU_SIZE" --cpu-repeats 1)
     if [ "$PART" = two ]; then  # the second call: GPU/CPU at CPU_SIZE², the Dask study,
-        # float32's floor, where the path's time goes (limits sum to 455 s)
+        # float32's floor, where the path's time goes (limits sum to 500 s)
         for solver in hardwall adhesive; do
             step 140 "GPU/CPU at ${CPU_SIZE}²: $solver (NumPy on every core)" $PY \
                 benchmarks/gpu.py --backend jax --device "$DEVICE" --sizes "$CPU_SIZE" \
@@ -76,6 +76,9 @@ step() {  # step SECONDS TITLE COMMAND...: run with a limit, log the time it too
         step 75 "the ${PATH_SIZE}² path's solves and per-state work" $PY \
             benchmarks/gpu_path_phases.py --size "$PATH_SIZE" --states 41 \
             --json "$OUTDIR/path_phases.json"
+        step 45 "the hard wall loop's profiler trace at ${PATH_SIZE}²" $PY \
+            benchmarks/gpu_trace.py --solver hardwall_loop --size "$PATH_SIZE" \
+            --json "$OUTDIR/trace_hardwall.json"
         echo "=== done $(date -u)"
         exit 0
     fi
