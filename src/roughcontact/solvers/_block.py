@@ -15,17 +15,22 @@ from .smooth_rules import STIFF_FRACTION
 __all__ = ["STIFF_FRACTION"]
 
 
-def _stiff_sites(interaction, gap, self_stiffness, work=None):
+def _stiff_sites(interaction, gap, self_stiffness, work=None, known=None):
     """The preconditioner's stiff sites, V'' > STIFF_FRACTION K_ii, and 1/(K_ii + V'') there.
 
     Returns ``(sites, diagonal)`` (index arrays, see :mod:`._inplace`; ``diagonal`` holds
     the values on them, in their order), or ``(None, None)`` when no site is stiff (then
-    the preconditioner is the Green's function alone).
+    the preconditioner is the Green's function alone). ``known``: ``(sites, V'' there)``
+    at ``gap``, sites (ascending) that hold every one inside the cutoff on the patch, when
+    the caller has them (:class:`._inplace.StickyBand`; the same result).
     """
     work = work or Workspace(gap)
-    # V'' = 0 beyond the cutoff (and off the patch): only sites inside it can be stiff
-    near = work.interacting(gap, interaction.cutoff)
-    curvature = interaction.curvature(gap if near is None else gap[near])
+    if known is not None:
+        near, curvature = known
+    else:
+        # V'' = 0 beyond the cutoff (and off the patch): only sites inside it can be stiff
+        near = work.interacting(gap, interaction.cutoff)
+        curvature = interaction.curvature(gap if near is None else gap[near])
     stiff = curvature > STIFF_FRACTION * self_stiffness
     if not bool(np.any(stiff)):
         return None, None

@@ -108,7 +108,7 @@ from ._block import (  # noqa: F401 - STIFF_FRACTION, _precondition, _stiff_site
     _stiff_sites,
 )
 from ._free_mean import FreeMean
-from ._inplace import Workspace
+from ._inplace import BAND_MARGIN, StickyBand, Workspace
 from .adhesive_rules import floor_verdict, physical_pressure_scale
 from .fourier import compliance_operator, on_work_grid, patch_sites, stiffness_operator
 from .inputs import check_problem, warm_deflection
@@ -122,6 +122,7 @@ from .smooth_rules import EPS64 as _EPS64
 from .smooth_rules import (  # the rules shared with the compiled loop (:mod:`._smooth_jax`)
     FLOOR_PATIENCE,
     FLOOR_ULPS,
+    GUESS_MAX,
     LINE_SEARCH_RTOL,
     REFRESH_EVERY,
     RESTART_EVERY,
@@ -293,6 +294,10 @@ def minimize_energy(
     # the sites `near` (None: every site) where it can be nonzero
     cutoff = interaction.cutoff
     near = work.interacting(gap, cutoff)
+    sticky = None  # the line search's sites kept between iterations (finite cutoff)
+    if math.isfinite(cutoff):
+        reach = interaction.range if interaction.range is not None else cutoff
+        sticky = StickyBand(work, cutoff, BAND_MARGIN * reach)
     free = FreeMean.of(load, interaction, substrate, h, work, rigid and patch is None)
     # a warm start refreshes the block preconditioner at once, except on a free boundary
     # (module docstring)
@@ -308,7 +313,7 @@ def minimize_energy(
         if near is None:
             g -= p_near
         else:
-            g[near] -= p_near
+            np.subtract.at(g, near, p_near)  # (g[near] -= p_near, without a gathered copy)
         return g
 
     gr = imbalance(kw, p_near, near)
@@ -323,7 +328,7 @@ def minimize_energy(
     stall = FloorGuard(StallGuard(dtype_name(h)), dtype_name(h), lambda: largest(p_near), es,
                        tol, lambda: physical_pressure_scale(h, substrate, interaction))
     while True:
-        residual = max(float(np.max(gr)), -float(np.min(gr))) / es
+        residual = max(float(np.maximum.reduce(gr)), -float(np.minimum.reduce(gr))) / es
         if not math.isfinite(residual):
             status = SolveStatus.NON_FINITE
             message = f"non-finite state at iteration {it} (check inputs and the interaction)"
@@ -347,7 +352,10 @@ def minimize_energy(
         reliable.step()
         restart = not directions or it % restart_every == 0
         if it % refresh_every == 0 or (it == 1 and refresh_at_once):
-            stiff, diagonal = _stiff_sites(interaction, gap, self_stiffness, work)
+            known = None
+            if sticky is not None and sticky.sites is not None and sticky.curvature is not None:
+                known = sticky.sites, sticky.curvature  # V'' on S at this gap
+            stiff, diagonal = _stiff_sites(interaction, gap, self_stiffness, work, known)
         z_old, z = z, z_old  # z_old is the previous z; its array is reused for the new z
         z, kz = _precondition(
             free.mean_free(gr) if free else gr, stiff, diagonal, compliance, elastic_pressure,
@@ -371,9 +379,15 @@ def minimize_energy(
             ks_of_s = functools.partial(_direction_stiffness, work, ks, beta, kz)
         else:
             ks = ks_of_s = _direction_stiffness(work, ks, beta, kz)
+        band = None if sticky is None else sticky.select(gap, s, GUESS_MAX, interaction.curvature)
         # s.K w from the slope, s.gr = s.K w - s.p_int (s has no mean when the mean is
         # rigid): a dot over the interaction's sites instead of the grid
-        elastic_slope = slope0 + _dot(s if near is None else s[near], p_near)
+        if near is None:
+            elastic_slope = slope0 + _dot(s, p_near)
+        else:
+            s_near = band[1] if band is not None and near is band[0] else s[near]
+            elastic_slope = slope0 + _dot(s_near, p_near)
+        trial = {}
         alpha, near, p_near = line_minimum(
             interaction,
             gap,
@@ -385,11 +399,15 @@ def minimize_energy(
             with_pressure=True,
             work=work,
             elastic_slope=elastic_slope,
+            band=band,
+            trial=trial,
         )
         if not math.isfinite(alpha):
             status = SolveStatus.LINE_SEARCH_FAILED
             message = f"line search failed at iteration {it}"
             break
+        if sticky is not None:
+            sticky.moved(alpha, near, trial)
         exact = False
         gap = work.axpy(gap, alpha, s)
         kw = work.axpy(kw, alpha, ks)
