@@ -122,3 +122,36 @@ def test_the_fused_law_evaluation_is_the_two_evaluations():
             np.testing.assert_allclose(p, law.pressure(g), rtol=rtol, atol=0)
             np.testing.assert_allclose(c, law.curvature(g), rtol=rtol, atol=0)
             assert np.all(p[g >= law.cutoff] == 0) and np.all(c[g >= law.cutoff] == 0)
+
+
+def test_the_dense_blocks_are_the_indexed_ones():
+    # the block preconditioner with grid-sized factors (a large stiff set) gives the same z
+    # and K z as with the stiff sites' indices, to rounding
+    from roughcontact.solvers._block import _dense_blocks, _precondition
+    from roughcontact.solvers.fourier import compliance_operator, stiffness_operator
+
+    sub = rc.Substrate((64, 64))
+    rng = np.random.default_rng(2)
+    gr = rng.standard_normal(64 * 64)
+    gr -= gr.mean()
+    stiff = np.flatnonzero(rng.random(gr.size) < 0.4)
+    diagonal = 1.0 / (sub.self_stiffness + rng.random(stiff.size))
+    compliance = compliance_operator(sub, work_grid=True)
+    stiffness = stiffness_operator(sub, work_grid=True)
+    work = Workspace(gr)
+    for fast in (None, np.empty(gr.size, np.float32)):
+        result = None if fast is None else np.empty_like(fast)
+        z, kz = _precondition(gr, stiff, diagonal, compliance, stiffness, True, work=work,
+                              fast=fast, result=result)  # fmt: skip
+        z, kz = z.copy(), kz.copy()
+        dense = _dense_blocks(stiff, diagonal, gr)
+        z2, kz2 = _precondition(gr, stiff, diagonal, compliance, stiffness, True, work=work,
+                                fast=fast, result=result, dense=dense)  # fmt: skip
+        scale = np.abs(z).max()
+        rtol = 1e-13 if fast is None else 1e-6
+        np.testing.assert_allclose(z2, z, rtol=0, atol=rtol * scale)
+        np.testing.assert_allclose(kz2, kz, rtol=0, atol=rtol * np.abs(kz).max())
+        assert abs(z2.mean()) <= 1e-15 * scale  # mean-free (the rigid uniform mode)
+        # on the stiff sites the diagonal block, less one shift (the mean)
+        shift = z2[stiff] - gr[stiff] * diagonal
+        np.testing.assert_allclose(shift, shift[0], rtol=0, atol=1e-14 * scale)

@@ -102,7 +102,9 @@ from .._accelerator import routed
 from .._backend import dtype_name, overlaps_fft
 from .._validate import ParameterError
 from ._block import (  # noqa: F401 - STIFF_FRACTION, _precondition, _stiff_sites: public here
+    DENSE_FRACTION,
     STIFF_FRACTION,
+    _dense_blocks,
     _direction_stiffness,
     _precondition,
     _stiff_sites,
@@ -319,7 +321,7 @@ def minimize_energy(
     gr = imbalance(kw, p_near, near)
     exact = True  # kw is K w from a fresh float64 convolution (not updated incrementally)
     reliable = ReliableUpdates(tol)
-    stiff = diagonal = None
+    stiff = diagonal = dense = blocks = None  # blocks: the arrays of dense, kept
     directions = False  # whether s, ks hold conjugate directions to build on
     s, ks, z, z_old = (np.empty_like(gap) for _ in range(4))
     gz_old = 1.0
@@ -356,11 +358,15 @@ def minimize_energy(
             if sticky is not None and sticky.sites is not None and sticky.curvature is not None:
                 known = sticky.sites, sticky.curvature  # V'' on S at this gap
             stiff, diagonal = _stiff_sites(interaction, gap, self_stiffness, work, known)
+            dense = None
+            if stiff is not None and stiff.size > DENSE_FRACTION * n:
+                dense = blocks = _dense_blocks(stiff, diagonal, gap, blocks)
         z_old, z = z, z_old  # z_old is the previous z; its array is reused for the new z
         z, kz = _precondition(
             free.mean_free(gr) if free else gr, stiff, diagonal, compliance, elastic_pressure,
             rigid,
             out=z, work=work, fast=fast, result=fast_result, background=overlap and not free,
+            dense=dense,
         )  # fmt: skip
         if free and (z := free.add(z, gr, gap, it, refresh_every)) is None:
             status, message = SolveStatus.DETACHED, free.detached
