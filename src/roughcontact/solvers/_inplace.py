@@ -20,14 +20,17 @@ import math
 
 import numpy as np
 
-__all__ = ["BAND_MARGIN", "BAND_MARGIN_CAP", "StickyBand", "Workspace"]
+__all__ = ["BAND_MARGIN", "BAND_MARGIN_CAP", "BAND_SKIP", "StickyBand", "Workspace"]
 
 #: The sticky band (:class:`StickyBand`) holds the sites with ``gap < cutoff + margin``,
 #: ``margin = BAND_MARGIN * range`` (the law's range, or its cutoff without one), or the
 #: largest approach ``reach * max(-s)`` of the search direction where that is larger, up
 #: to ``BAND_MARGIN_CAP`` margins (beyond it: the line search's own band).
+#: After a step beyond that, the next ``BAND_SKIP`` line searches take their own band
+#: (fast approaches come in runs: a jump into contact).
 BAND_MARGIN = 0.25
 BAND_MARGIN_CAP = 4.0
+BAND_SKIP = 3
 
 
 class Workspace:
@@ -162,6 +165,7 @@ class StickyBand:
         self.sites = None  # S (index array); None: to be selected
         self.outside = None  # 1 on the patch's sites outside S, else 0
         self.slack = self.low = 0.0
+        self.skip = 0  # selections left to the line search's own band
         self.gap = self.curvature = None  # on S at the current iterate (curvature: or None)
 
     def select(self, gap, s, reach: float, curvature):
@@ -174,17 +178,22 @@ class StickyBand:
                 self.low = self._approach(s, self.outside)
             if self.slack + reach * self.low >= 0.0:
                 return self.sites, s[self.sites], self.gap, self.curvature
+        if self.skip:  # after a fast approach: the line search's own band for a while
+            self.skip -= 1
+            self.sites = None
+            return None
         margin = self.margin
-        for _ in range(2):  # the margin, or the approach of the sites outside it
-            inside, outside = self._split(gap, margin)
+        inside, outside = self._split(gap, margin)
+        self.low = min(float(np.minimum.reduce(s)), 0.0)
+        if margin + reach * self.low < 0.0:
             self.low = self._approach(s, outside)
-            if margin + reach * self.low >= 0.0:
-                break
-            # wider: fewer sites outside, none of which approaches by more than that
-            margin = -reach * self.low
-            if margin > BAND_MARGIN_CAP * self.margin:
-                self.sites = None
-                return None
+            if margin + reach * self.low < 0.0:
+                # wider: fewer sites outside, none of which approaches by more than that
+                margin = -reach * self.low
+                if margin > BAND_MARGIN_CAP * self.margin:
+                    self.sites, self.skip = None, BAND_SKIP
+                    return None
+                inside, outside = self._split(gap, margin)
         self.sites, self.outside, self.slack = inside, outside, margin
         self.gap = gap[inside]
         self.curvature = curvature(self.gap)
