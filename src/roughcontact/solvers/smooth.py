@@ -302,10 +302,12 @@ def minimize_energy(
     near = work.interacting(gap, cutoff)
     # the line search's sites kept between iterations (finite cutoff), unless K z runs
     # beside the line search: then its own band and curvature cost no time (they are
-    # computed while K z is), and the kept band's wider evaluations would (512²: +4 %)
+    # computed while K z is), and the kept band's wider evaluations would (512²: +4 %);
+    # for a law that evaluates its pressure and curvature together (else every iteration
+    # would select the band afresh)
     sticky = None
-    if math.isfinite(cutoff) and not overlap:
-        reach = interaction.range if interaction.range is not None else cutoff
+    if math.isfinite(cutoff) and not overlap and hasattr(interaction, "pressure_and_curvature"):
+        reach = getattr(interaction, "range", None) or cutoff
         sticky = StickyBand(work, cutoff, BAND_MARGIN * reach)
     free = FreeMean.of(load, interaction, substrate, h, work, rigid and patch is None)
     # a warm start refreshes the block preconditioner at once, except on a free boundary
