@@ -7,9 +7,17 @@ interaction of a half-space of 12-6 LJ atoms with a wall (Steele 1973). Its mini
 
 from __future__ import annotations
 
+import numpy as np
+
 from .._backend import array_namespace, constant
 
-__all__ = ["SIGMA_OVER_A0", "lj93_derivative", "lj93_terms", "lj93_with_core"]
+__all__ = [
+    "SIGMA_OVER_A0",
+    "lj93_derivative",
+    "lj93_derivatives",
+    "lj93_terms",
+    "lj93_with_core",
+]
 
 SIGMA_OVER_A0 = 2.5 ** (1.0 / 6.0)
 # g_min as a fraction of a0: below it the core is continued as a C2 quadratic, so a solver
@@ -79,3 +87,31 @@ def lj93_derivative(g, epsilon: float, sigma: float, a0: float, order: int, bran
     if not branch or bool(xp.any(g < g_min)):
         dv = dv + _second(epsilon, *powers) * (g - gc)
     return dv
+
+
+def lj93_derivatives(g, epsilon: float, sigma: float, a0: float):
+    """``(V_LJ', V_LJ'')`` of :func:`lj93_with_core` from one set of powers (NumPy): the
+    values of :func:`lj93_derivative` with ``order=1`` and ``order=2``."""
+    g_min = CORE_FRACTION * a0
+    gc = np.maximum(g, g_min)
+    # _powers, _second and _first with the same operations in the same order (products
+    # commute exactly), written into fewer arrays
+    inv = np.divide(1.0, gc)
+    s3 = np.multiply(inv, sigma)
+    t = np.multiply(s3, s3)
+    t *= s3
+    s3 = t
+    s9 = np.multiply(s3, s3)
+    s9 *= s3
+    second = np.multiply(s9, 180.0 / 15.0)
+    b = np.multiply(s3, 12.0)
+    second -= b
+    second *= epsilon
+    second *= np.multiply(inv, inv, out=b)
+    dv = np.multiply(s9, -(18.0 / 15.0), out=s9)
+    dv += np.multiply(s3, 3.0, out=b)
+    dv *= epsilon
+    dv *= inv
+    if g.shape[0] and float(np.minimum.reduce(g)) < g_min:
+        dv = dv + second * (g - gc)
+    return dv, second

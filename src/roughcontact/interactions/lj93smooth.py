@@ -41,6 +41,7 @@ from ._lj93 import (
     SIGMA_OVER_A0,
     curvature_at_minimum,
     lj93_derivative,
+    lj93_derivatives,
     lj93_terms,
     lj93_with_core,
 )
@@ -200,6 +201,38 @@ class SmoothLJ93:
         d2v *= m
         d2v *= constant(12.0 * self.work_of_adhesion / self.range**2, d2v)
         return self._core(xp, g, d2v, 2, sign=1.0)
+
+    def pressure_and_curvature(self, gap):
+        """``(pressure(gap), curvature(gap))`` in one evaluation (the same values).
+
+        The line search of the smooth solver's NumPy loop evaluates both at its trial
+        points (the curvature at the accepted one is the next line search's Newton
+        guess): on NumPy the quartic's ``1 - x`` and the core's sites and powers are
+        computed once for both; elsewhere the two calls.
+        """
+        if type(gap) is not np.ndarray or gap.dtype not in (np.float64, np.float32):
+            return self.pressure(gap), self.curvature(gap)
+        g, w, dr = gap, self.work_of_adhesion, self.range
+        m = self.cutoff - g  # (_remaining_range's operations)
+        m *= 1.0 / dr
+        np.clip(m, 0.0, 1.0, out=m)
+        p = 1.0 - m  # x (the operations and their order of pressure and curvature)
+        p *= m
+        p *= m
+        p *= -12.0 * w / dr
+        d2v = 3.0 * m
+        d2v -= 2.0  # 1 - 3x
+        d2v *= m
+        d2v *= 12.0 * w / dr**2
+        core = np.flatnonzero(g < self.equilibrium_distance) if g.ndim == 1 else None
+        if core is None:  # (not a flat field: the two evaluations)
+            return self.pressure(g), self.curvature(g)
+        if core.size:
+            gc = g[core]
+            dv, second = lj93_derivatives(gc, self.epsilon, self.sigma, self.equilibrium_distance)
+            p[core] = -1.0 * dv
+            d2v[core] = 1.0 * second
+        return p, d2v
 
     def _kernel_args(self, scale):
         """The scalars of the fused CuPy kernels (:mod:`._fused`), after the gap."""

@@ -18,7 +18,16 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._backend import array_device, array_namespace, convolve, irfft2, is_numpy_array
+from .._backend import (
+    _pocketfft,
+    _pocketfft_convolve,
+    array_device,
+    array_namespace,
+    convolve,
+    default_workers,
+    irfft2,
+    is_numpy_array,
+)
 
 __all__ = [
     "compliance_operator",
@@ -46,8 +55,20 @@ def _fourier_operator(substrate, which: int, work_grid: bool):
     padded = _padded(substrate) and not work_grid
     shape = substrate.work_shape if work_grid else substrate.shape
     spectra, buffers = {}, {}
+    direct = {}  # dtype -> (kernel, spectrum, pocketfft, workers): the periodic NumPy path
 
     def apply(x_flat, out=None):
+        if type(x_flat) is np.ndarray and not padded:
+            # the solvers' hot path (twice per iteration): what the general path below
+            # looks up per call (the multipliers, the FFT binding, the threads), once
+            fast = direct.get(x_flat.dtype)
+            if fast is None:
+                fast = direct[x_flat.dtype] = _direct(substrate, which, x_flat)
+            kernel, spectrum, pf, workers = fast
+            if pf is not None:
+                x = x_flat.reshape(shape)
+                out = None if out is None else out.reshape(shape)
+                return _pocketfft_convolve(pf, x, kernel, spectrum, out, workers).reshape(-1)
         xp = array_namespace(x_flat)
         kernel = substrate.multipliers(x_flat)[which]  # cached per backend and dtype
         x = xp.reshape(x_flat, shape)
@@ -74,6 +95,14 @@ def _fourier_operator(substrate, which: int, work_grid: bool):
         return out
 
     return apply
+
+
+def _direct(substrate, which, like):
+    """``(kernel, spectrum, pocketfft binding or None, workers)`` of an operator for the
+    NumPy flat fields of ``like``'s dtype (the same transform as :func:`convolve`)."""
+    kernel = substrate.multipliers(like)[which]
+    spectrum = np.empty(kernel.shape, dtype=np.result_type(like.dtype, np.complex64))
+    return kernel, spectrum, _pocketfft(), default_workers(like.size)
 
 
 def compliance_operator(substrate, *, work_grid: bool = False):

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from ._inplace import Workspace
 from .bounded_rules import BOUNDED_LINE_SEARCH_RTOL
 from .reductions import dot
@@ -27,6 +29,8 @@ def line_minimum(
     elastic_slope=None,
     speculate=None,
     speculated=None,
+    band=None,
+    trial=None,
 ):
     """Step ``alpha`` minimising E along ``w + alpha s`` (a root of the directional slope).
 
@@ -44,17 +48,35 @@ def line_minimum(
     may still be running). NumPy arrays (the compiled loops' line search is
     :func:`roughcontact.solvers._smooth_jax.line_minimum`). ``speculate`` and
     ``speculated`` are accepted and ignored (they served the retired device loops).
+    ``band``, when the caller has them (:class:`._inplace.StickyBand`): ``(sites,
+    s[sites], gap[sites], V''(gap[sites]) or None)``, sites that cover every one that
+    can feel the interaction for ``alpha <= 4``. ``trial``, a dict: receives the last
+    trial's "gap" (on the sites) and, from a law with ``pressure_and_curvature``, its
+    "curvature".
     """
     c0 = dot(s, kw) if elastic_slope is None else elastic_slope
     work = work or Workspace(gap)
-    # sites that can feel the interaction for alpha <= 4; the others only matter beyond
-    band = math.isfinite(interaction.cutoff)
-    sites = work.band(gap, s, GUESS_MAX, interaction.cutoff) if band else work.patch
-    sa, ga = (s, gap) if sites is None else (s[sites], gap[sites])
+    both = getattr(interaction, "pressure_and_curvature", None) if trial is not None else None
+    curv_a = None
+    if band is not None:
+        sites, sa, ga, curv_a = band
+        band = True
+    else:
+        # sites that can feel the interaction for alpha <= 4; the others only matter beyond
+        band = math.isfinite(interaction.cutoff)
+        sites = work.band(gap, s, GUESS_MAX, interaction.cutoff) if band else work.patch
+        sa, ga = (s, gap) if sites is None else (s[sites], gap[sites])
     last = {}
 
     def slope(alpha):
-        p = interaction.pressure(ga + alpha * sa)
+        g = np.multiply(sa, alpha)  # ga + alpha * sa, in one array
+        g += ga
+        if both is None:
+            p = interaction.pressure(g)
+        else:
+            p, trial["curvature"] = both(g)
+        if trial is not None:
+            trial["gap"] = g
         last.update(pressure=p, sites=sites)
         return c0 + alpha * c1 - dot(sa, p)
 
@@ -68,7 +90,7 @@ def line_minimum(
 
     # Newton guess with the curvature at alpha = 0 (ks is asked for last: the caller may
     # still be computing it)
-    curv = dot(sa * sa, interaction.curvature(ga))
+    curv = dot(sa * sa, interaction.curvature(ga) if curv_a is None else curv_a)
     c1 = dot(s, ks() if callable(ks) else ks)
     curv = curv + c1
     hi = -slope0 / curv if curv > 0 else 1.0

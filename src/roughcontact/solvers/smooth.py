@@ -60,8 +60,12 @@ formed only for an exact ``K w``; in float32 the deflection is advanced beside i
 ``K w`` is formed from it in float64, because the gap's own rounding, ulp(max gap), and a
 float32 FFT's error set a residual floor of ~4e-6 E* at 4096²: 1.7e-6 with the deflection
 and the float64 ``K w``), the interaction pressure is held only on the line
-search's band of sites that can feel the interaction (zero elsewhere), the
-preconditioner's mean comes from sums it already needs, the line search's elastic slope
+search's band of sites that can feel the interaction (zero elsewhere; on NumPy a band
+kept over iterations, :class:`._inplace.StickyBand`, whose gap and curvature come from
+the last line search's trial, the law's pressure and curvature evaluated together), the
+block preconditioner of a large stiff set applied with grid-sized factors
+(:func:`._block._dense_blocks`), the preconditioner's mean comes from sums it already
+needs, the line search's elastic slope
 ``s.K w`` comes from the directional derivative and the band's pressure, and on NumPy
 every full-grid update writes into arrays allocated once per solve (:mod:`._inplace`):
 1.3-1.5x less time per iteration than the same steps with a temporary per expression.
@@ -105,13 +109,15 @@ from .._accelerator import routed
 from .._backend import dtype_name, overlaps_fft
 from .._validate import ParameterError
 from ._block import (  # noqa: F401 - STIFF_FRACTION, _precondition, _stiff_sites: public here
+    DENSE_FRACTION,
     STIFF_FRACTION,
+    _dense_blocks,
     _direction_stiffness,
     _precondition,
     _stiff_sites,
 )
 from ._free_mean import FreeMean
-from ._inplace import Workspace
+from ._inplace import BAND_MARGIN, StickyBand, Workspace
 from .adhesive_rules import floor_verdict, physical_pressure_scale
 from .fourier import compliance_operator, on_work_grid, patch_sites, stiffness_operator
 from .inputs import check_problem, warm_deflection
@@ -125,6 +131,7 @@ from .smooth_rules import EPS64 as _EPS64
 from .smooth_rules import (  # the rules shared with the compiled loop (:mod:`._smooth_jax`)
     FLOOR_PATIENCE,
     FLOOR_ULPS,
+    GUESS_MAX,
     LINE_SEARCH_RTOL,
     REFRESH_EVERY,
     RESTART_EVERY,
@@ -311,6 +318,15 @@ def minimize_energy(
     # the sites `near` (None: every site) where it can be nonzero
     cutoff = interaction.cutoff
     near = work.interacting(gap, cutoff)
+    # the line search's sites kept between iterations (finite cutoff), unless K z runs
+    # beside the line search: then its own band and curvature cost no time (they are
+    # computed while K z is), and the kept band's wider evaluations would (512²: +4 %);
+    # for a law that evaluates its pressure and curvature together (else every iteration
+    # would select the band afresh)
+    sticky = None
+    if math.isfinite(cutoff) and not overlap and hasattr(interaction, "pressure_and_curvature"):
+        reach = getattr(interaction, "range", None) or cutoff
+        sticky = StickyBand(work, cutoff, BAND_MARGIN * reach)
     free = FreeMean.of(load, interaction, substrate, h, work, rigid and patch is None)
     # a warm start refreshes the block preconditioner at once, except on a free boundary
     # (module docstring)
@@ -326,13 +342,13 @@ def minimize_energy(
         if near is None:
             g -= p_near
         else:
-            g[near] -= p_near
+            np.subtract.at(g, near, p_near)  # (g[near] -= p_near, without a gathered copy)
         return g
 
     gr = imbalance(kw, p_near, near)
     exact = True  # kw is K w from a fresh float64 convolution (not updated incrementally)
     reliable = ReliableUpdates(tol)
-    stiff = diagonal = None
+    stiff = diagonal = dense = blocks = None  # blocks: the arrays of dense, kept
     directions = False  # whether s, ks hold conjugate directions to build on
     s, ks, z, z_old = (np.empty_like(gap) for _ in range(4))
     gz_old = 1.0
@@ -341,7 +357,7 @@ def minimize_energy(
     stall = FloorGuard(StallGuard(dtype_name(h)), dtype_name(h), lambda: largest(p_near), es,
                        tol, lambda: physical_pressure_scale(h, substrate, interaction))
     while True:
-        residual = max(float(np.max(gr)), -float(np.min(gr))) / es
+        residual = max(float(np.maximum.reduce(gr)), -float(np.minimum.reduce(gr))) / es
         if not math.isfinite(residual):
             status = SolveStatus.NON_FINITE
             message = f"non-finite state at iteration {it} (check inputs and the interaction)"
@@ -352,6 +368,8 @@ def minimize_energy(
                 kw = elastic_pressure(w, out=kw)
             else:  # the gap re-formed from w: clears its increments' rounding
                 gap = np.add(base, deflection, out=gap)
+                if sticky is not None:
+                    sticky.forget()  # its gap and curvature were those before
                 near = work.interacting(gap, cutoff)
                 p_near = interaction.pressure(gap if near is None else gap[near])
                 kw = _exact_kw(elastic_pressure, deflection, out=kw)
@@ -372,12 +390,19 @@ def minimize_energy(
         reliable.step()
         restart = not directions or it % restart_every == 0
         if it % refresh_every == 0 or (it == 1 and refresh_at_once):
-            stiff, diagonal = _stiff_sites(interaction, gap, self_stiffness, work)
+            known = None
+            if sticky is not None and sticky.sites is not None and sticky.curvature is not None:
+                known = sticky.sites, sticky.curvature  # V'' on S at this gap
+            stiff, diagonal = _stiff_sites(interaction, gap, self_stiffness, work, known)
+            dense = None
+            if stiff is not None and stiff.size > DENSE_FRACTION * n and not overlap:
+                dense = blocks = _dense_blocks(stiff, diagonal, gap, blocks)
         z_old, z = z, z_old  # z_old is the previous z; its array is reused for the new z
         z, kz = _precondition(
             free.mean_free(gr) if free else gr, stiff, diagonal, compliance, elastic_pressure,
             rigid,
             out=z, work=work, fast=fast, result=fast_result, background=overlap and not free,
+            dense=dense,
         )  # fmt: skip
         if free and (z := free.add(z, gr, gap, it, refresh_every, kz=kz)) is None:
             status, message = SolveStatus.DETACHED, free.detached
@@ -396,9 +421,15 @@ def minimize_energy(
             ks_of_s = functools.partial(_direction_stiffness, work, ks, beta, kz)
         else:
             ks = ks_of_s = _direction_stiffness(work, ks, beta, kz)
+        band = None if sticky is None else sticky.select(gap, s, GUESS_MAX, interaction.curvature)
         # s.K w from the slope, s.gr = s.K w - s.p_int (s has no mean when the mean is
         # rigid): a dot over the interaction's sites instead of the grid
-        elastic_slope = slope0 + _dot(s if near is None else s[near], p_near)
+        if near is None:
+            elastic_slope = slope0 + _dot(s, p_near)
+        else:
+            s_near = band[1] if band is not None and near is band[0] else s[near]
+            elastic_slope = slope0 + _dot(s_near, p_near)
+        trial = {} if sticky is not None else None
         alpha, near, p_near = line_minimum(
             interaction,
             gap,
@@ -410,11 +441,15 @@ def minimize_energy(
             with_pressure=True,
             work=work,
             elastic_slope=elastic_slope,
+            band=band,
+            trial=trial,
         )
         if not math.isfinite(alpha):
             status = SolveStatus.LINE_SEARCH_FAILED
             message = f"line search failed at iteration {it}"
             break
+        if sticky is not None:
+            sticky.moved(alpha, near, trial)
         exact = False
         gap = work.axpy(gap, alpha, s)
         if deflection is not None:
