@@ -93,3 +93,17 @@ def assert_donated(state):
     jax = pytest.importorskip("jax")
     leaves = [x for x in jax.tree.leaves(state) if getattr(x, "ndim", 0) >= 1]
     assert leaves and all(x.is_deleted() for x in leaves)
+
+
+def warm_steps_by_load_and_offset(h, sub, law, loads):
+    """A load-controlled approach through ``loads`` (every step converged, each load
+    carried to 1e-8 E*) and the offset-controlled approach through the offsets it found:
+    ``(by_load, median warm load step, median warm offset step)`` in iterations."""
+    import roughcontact as rc
+
+    by_load = rc.approach_retract(h, sub, law, loads=loads, retract=False)
+    assert all(by_load["converged"].values)
+    np.testing.assert_allclose(by_load["load"].values, loads, atol=1e-8)
+    by_offset = rc.approach_retract(h, sub, law, offsets=by_load["offset"].values, retract=False)
+    warm = [float(np.median(ds["iterations"].values[1:])) for ds in (by_load, by_offset)]
+    return by_load, *warm

@@ -6,6 +6,7 @@ import importlib
 
 import numpy as np
 import pytest
+from _helpers import warm_steps_by_load_and_offset
 
 import roughcontact as rc
 from roughcontact import SolveStatus
@@ -56,12 +57,7 @@ def test_the_same_state_as_the_nested_root_search():
 def test_load_controlled_path_step_costs_an_offset_step(la, ratio):
     h, sub, law = _problem(64, la)
     loads = np.linspace(0.0, 2e-3, 5)
-    by_load = rc.approach_retract(h, sub, law, loads=loads, retract=False)
-    assert all(by_load["converged"].values)
-    np.testing.assert_allclose(by_load["load"].values, loads, atol=1e-8)
-    by_offset = rc.approach_retract(h, sub, law, offsets=by_load["offset"].values, retract=False)
-    warm_load = np.median(by_load["iterations"].values[1:])
-    warm_offset = np.median(by_offset["iterations"].values[1:])
+    by_load, warm_load, warm_offset = warm_steps_by_load_and_offset(h, sub, law, loads)
     assert warm_load <= ratio * warm_offset, (warm_load, warm_offset)
 
 

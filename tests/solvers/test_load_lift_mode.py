@@ -7,6 +7,7 @@ import importlib
 
 import numpy as np
 import pytest
+from _helpers import warm_steps_by_load_and_offset
 
 import roughcontact as rc
 from roughcontact.solvers._inplace import Workspace
@@ -61,12 +62,7 @@ def test_load_path_steps_cost_an_offset_step(monkeypatch, n, la, ratio):
     # 1.09x at la 0.005, 1.08x at 0.05 (benchmarks/README.md)
     h, sub, law = _problem(n, la)
     loads = np.linspace(0.0, 2e-3, 5)
-    by_load = rc.approach_retract(h, sub, law, loads=loads, retract=False)
-    assert all(by_load["converged"].values)
-    np.testing.assert_allclose(by_load["load"].values, loads, atol=1e-8)
-    by_offset = rc.approach_retract(h, sub, law, offsets=by_load["offset"].values, retract=False)
-    warm_load = np.median(by_load["iterations"].values[1:])
-    warm_offset = np.median(by_offset["iterations"].values[1:])
+    by_load, warm_load, warm_offset = warm_steps_by_load_and_offset(h, sub, law, loads)
     assert warm_load <= ratio * warm_offset, (warm_load, warm_offset)
     if la == 0.005:  # the uniform block alone (FreeMean.add without K z): the same states
         add = free_mean.FreeMean.add
