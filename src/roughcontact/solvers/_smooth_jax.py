@@ -401,15 +401,12 @@ def run(st, k, *, law, rigid, stall, floor):
         return st, lost
 
     def exact_refresh(st, residual):
-        if st.w is None:
-            kw = _conv(st.gap - k.base, k.stiff)
-            return st._replace(kw=kw, gr=_imbalance(kw, st.p, rigid, k.load),
-                               exact=jnp.asarray(True), iterated=residual)  # fmt: skip
-        # float32: K w from the deflection itself; the gap (and its pressure) re-formed from
-        # it, which also clears the rounding the gap's increments gathered since the last
-        kw, gap = _exact_kw(st.w, k), k.base + st.w
-        p = law.pressure(gap)
-        return st._replace(kw=kw, gap=gap, p=p, gr=_imbalance(kw, p, rigid, k.load),
+        kw = _exact_kw(_deflection(st, k), k)
+        if st.w is not None:  # float32: the gap (and its pressure) re-formed from w, which
+            # clears the rounding the gap's increments gathered since the last refresh
+            gap = k.base + st.w
+            st = st._replace(gap=gap, p=law.pressure(gap))
+        return st._replace(kw=kw, gr=_imbalance(kw, st.p, rigid, k.load),
                            exact=jnp.asarray(True), iterated=residual)  # fmt: skip
 
     def proceed(st, residual):

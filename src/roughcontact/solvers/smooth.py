@@ -363,17 +363,15 @@ def minimize_energy(
             message = f"non-finite state at iteration {it} (check inputs and the interaction)"
             break
         if (update := reliable.check(residual, exact)) == "refresh":
-            if deflection is None:
-                w = work.difference(gap, base)  # in the scratch array, consumed at once
-                kw = elastic_pressure(w, out=kw)
-            else:  # the gap re-formed from w: clears its increments' rounding
+            if deflection is not None:  # the gap re-formed from w: clears its rounding
                 gap = np.add(base, deflection, out=gap)
                 if sticky is not None:
                     sticky.forget()  # its gap and curvature were those before
                 near = work.interacting(gap, cutoff)
                 p_near = interaction.pressure(gap if near is None else gap[near])
-                kw = _exact_kw(elastic_pressure, deflection, out=kw)
-            exact = True
+            # (gap - base in the scratch array, consumed at once)
+            w = work.difference(gap, base) if deflection is None else deflection
+            kw, exact = _exact_kw(elastic_pressure, w, out=kw), True
             gr = imbalance(kw, p_near, near)
             continue
         if update == "restart":
