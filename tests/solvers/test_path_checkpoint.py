@@ -52,6 +52,27 @@ def test_ctrl_c_keeps_the_finished_steps(monkeypatch):
     np.testing.assert_allclose(partial["load"], LOADS[:3], rtol=1e-9)
 
 
+def test_ctrl_c_between_steps_or_at_the_end_keeps_every_step(monkeypatch):
+    # a signal outside a step's solve (here: while the finished rows are read at the end)
+    # is the path's interruption too, not a bare KeyboardInterrupt losing the path
+    calls = {"n": 0}
+    real = path_module.fetch
+
+    def fetch(*args, **kwargs):
+        calls["n"] += 1
+        if calls["n"] == 1:
+            raise KeyboardInterrupt
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(path_module, "fetch", fetch)
+    with pytest.raises(rc.PathInterrupted, match="interrupted after step 4") as info:
+        rc.approach_retract(H, SUB, loads=LOADS, retract=False)
+    partial = info.value.partial
+    assert partial.sizes["step"] == len(LOADS)
+    np.testing.assert_allclose(partial["load"], LOADS, rtol=1e-9)
+    assert (partial["repulsive_patches"].values >= 1).all()  # settled on the second try
+
+
 @pytest.fixture()
 def surface_file(tmp_path):
     out = tmp_path / "s.npy"

@@ -260,11 +260,12 @@ def path(
         code = exit_code(err) if isinstance(err, PathInterrupted) else EXIT_FAILURE
         why = "terminated (SIGTERM): " if code == EXIT_TERMINATED else ""
         _fail(f"{why}{err} ({done})", code)
-    close()
-    ds = run.path
-    if offsets is not None:
-        ds.attrs["offset_unit"] = offset_unit
-    save(ds)
+    with deferred():  # a signal once the path is done: written first, then raised
+        close()
+        ds = run.path
+        if offsets is not None:
+            ds.attrs["offset_unit"] = offset_unit
+        save(ds)
     summary = {**run.summary(), "output": str(output), "periodic": sub.periodic}
     if default_approach is not None:
         summary["approach"] = default_approach  # a choice made for the user: said so

@@ -202,10 +202,10 @@ def approach_retract(
         )  # fmt: skip
 
     step = 0
-    while step < plan.size:
-        value = plan.values[step]
-        kwargs = {control: float(value)}
-        try:
+    try:
+        while step < plan.size:
+            value = plan.values[step]
+            kwargs = {control: float(value)}
             with checked():
                 res = solve(
                     heights, substrate, interaction, initial=previous, tol=tol,
@@ -238,15 +238,17 @@ def approach_retract(
             if checkpoint is not None and time.perf_counter() - saved >= checkpoint_seconds:
                 checkpoint(dataset())
                 saved = time.perf_counter()
-        except KeyboardInterrupt:
-            # in the solve or in the step's bookkeeping, progress or checkpoint after it:
-            # the partial path holds every step whose row is in (this one, once it is)
-            where = "in" if len(rows) == step else "after"
-            raise PathInterrupted(
-                f"interrupted {where} step {step} ({control} = {value:g})", dataset()
-            ) from None
-        step += 1
-    return dataset()
+            step += 1
+        return dataset()
+    except KeyboardInterrupt:
+        # anywhere in a step (the solve, its bookkeeping, progress, a checkpoint) or
+        # between two, or while the last rows are settled: the partial path holds every
+        # step whose row is in
+        done = len(rows)
+        i, where = (step, "in") if done == step and step < plan.size else (done - 1, "after")
+        raise PathInterrupted(
+            f"interrupted {where} step {i} ({control} = {plan.values[i]:g})", dataset()
+        ) from None
 
 
 def _area_target(until_area) -> float:
