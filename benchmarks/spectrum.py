@@ -17,7 +17,12 @@ Prints one line per case and preconditioner; where the largest and the smallest
 eigenvectors live (their shares on repulsive g < a0 and attractive sites; the rest is on
 free sites) shows which sites limit the preconditioner. ``--step`` takes the state after
 an earlier step of the approach; ``--lowest`` prints that many of the smallest
-eigenvalues (a few isolated ones could be deflated; a dense band cannot).
+eigenvalues (a few isolated ones could be deflated; a dense band cannot). ``--coarse-block
+B`` adds a two-level preconditioner, the block preconditioner plus an additive Galerkin
+coarse correction ``P (P^T H P)^+ P^T`` on B x B blocks, each block's indicator split on
+the sites of negative curvature (V'' < 0) and the rest (dense, so for grids <= 256²):
+
+    python benchmarks/spectrum.py --sizes 256 --adhesion-lengths 0.05 --coarse-block 8
 """
 
 from __future__ import annotations
@@ -48,7 +53,24 @@ def extremes(apply, m, lowest=1):
     return lam_max, vecs[:, 0].real, 1.05 * lam_max - low.real[order], low_vecs[:, order].real
 
 
-def case(n, la, seed, step=10, lowest=1):
+def coarse_correction(hessian, curvature, n, b):
+    """``r -> P (P^T H P)^+ P^T r``: block indicators split on V'' < 0, columns normalised."""
+    import scipy.sparse as sp
+
+    nb = n // b
+    label = ((np.arange(n)[:, None] // b) * nb + np.arange(n)[None, :] // b).ravel()
+    negative = curvature < 0
+    column = label + nb * nb * negative  # two aggregates per block
+    p = sp.csr_matrix((np.ones(n * n), (np.arange(n * n), column)), shape=(n * n, 2 * nb * nb))
+    p = p[:, np.asarray(p.sum(axis=0)).ravel() > 0].tocsc()
+    p = p @ sp.diags(1 / np.sqrt(np.asarray(p.sum(axis=0)).ravel()))
+    dense = p.toarray()
+    coarse = p.T @ np.column_stack([hessian(dense[:, j]) for j in range(dense.shape[1])])
+    inverse = np.linalg.pinv(0.5 * (coarse + coarse.T), rcond=1e-10, hermitian=True)
+    return lambda r: p @ (inverse @ (p.T @ r))
+
+
+def case(n, la, seed, step=10, lowest=1, coarse_block=None):
     from roughcontact.solvers import smooth
     from roughcontact.solvers.fourier import compliance_operator, stiffness_operator
 
@@ -80,7 +102,11 @@ def case(n, la, seed, step=10, lowest=1):
         repulsive=float(repulsive.mean()),
         attractive=float(attractive.mean()),
     )
-    for name, precondition in (("green", green), ("block", block)):
+    preconditioners = {"green": green, "block": block}
+    if coarse_block:
+        correction = coarse_correction(hessian, curvature, n, coarse_block)
+        preconditioners[f"block+coarse{coarse_block}"] = lambda r: block(r) + correction(r)
+    for name, precondition in preconditioners.items():
         lam_max, vec, lows, low_vecs = extremes(
             lambda v, p=precondition: p(hessian(v)), gap.size, lowest
         )
@@ -106,7 +132,14 @@ def main(argv=None):
     ap.add_argument(
         "--lowest", type=int, default=1, help="how many of the smallest eigenvalues to print"
     )
+    ap.add_argument(
+        "--coarse-block", type=int, default=None, help="also a two-level preconditioner (B x B)"
+    )
     args = ap.parse_args(argv)
+    if args.coarse_block is not None and (
+        args.coarse_block < 2 or any(n % args.coarse_block for n in args.sizes)
+    ):
+        ap.error(f"--coarse-block must be >= 2 and divide every size, got {args.coarse_block}")
     if not 1 <= args.step <= 10:
         ap.error(f"--step must be in 1..10, got {args.step}")
     if args.lowest < 1:
@@ -118,8 +151,8 @@ def main(argv=None):
     for la in args.adhesion_lengths:
         for n in args.sizes:
             t0 = time.perf_counter()
-            r = case(n, la, args.seed, args.step, args.lowest)
-            for name in ("green", "block"):
+            r = case(n, la, args.seed, args.step, args.lowest, args.coarse_block)
+            for name in [k for k in r if k in ("green", "block") or k.startswith("block+")]:
                 s = r[name]
                 (rmax, amax), (rmin, amin) = s["weight_max"], s["weight_min"]
                 print(
