@@ -138,7 +138,8 @@ def approach_retract(
     PathError
         When a step ends in a non-finite state; its ``partial`` has every step before.
     PathInterrupted
-        On Ctrl-C (KeyboardInterrupt) during a step; its ``partial`` has every step before.
+        On Ctrl-C (KeyboardInterrupt) anywhere in the path (in a step, between two, or
+        while the finished steps are gathered); its ``partial`` has every finished step.
     """
     if (offsets is None) == (loads is None):
         raise ParameterError("give exactly one of offsets or loads")
