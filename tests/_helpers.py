@@ -107,3 +107,13 @@ def warm_steps_by_load_and_offset(h, sub, law, loads):
     by_offset = rc.approach_retract(h, sub, law, offsets=by_load["offset"].values, retract=False)
     warm = [float(np.median(ds["iterations"].values[1:])) for ds in (by_load, by_offset)]
     return by_load, *warm
+
+
+def flat_through_contact():
+    """A gentle surface (h'rms 0.05) pushed to a mean gap of 0.02 a0: every site deep in the
+    core, uniform pressures ~6e12 E*, whose force balance rounds to exactly 0."""
+    import roughcontact as rc
+
+    h = rc.self_affine((64, 64), hurst=0.8, rms_slope=0.05, short_cutoff=4.0, seed=11)
+    law = rc.SmoothLJ93.from_adhesion_length(0.05)
+    return h, law, float(h.max()) - 0.5

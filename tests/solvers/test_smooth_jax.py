@@ -144,6 +144,14 @@ def test_deep_compression_is_a_runaway_on_jax_as_on_numpy(precision, request):
     assert ref.status is rc.SolveStatus.RUNAWAY
     assert res.status is rc.SolveStatus.RUNAWAY and not res.converged, res.message
     assert res.message.startswith("runaway: pressures reach"), res.message
+    # one that rounds its force balance to 0 in float64 too (the NumPy loop once said
+    # "converged" there): the same verdict in both loops
+    from _helpers import flat_through_contact
+
+    h2, law2, offset2 = flat_through_contact()
+    for heights in (h2, jnp.asarray(h2)):
+        flat = rc.solve(heights, sub, law2, offset=offset2)
+        assert flat.status is rc.SolveStatus.RUNAWAY, flat.message
     # a physical state of the same surface is not touched by the check
     ok = rc.solve(jnp.asarray(h), sub, law, offset=float(h.max()) + 0.5)
     assert ok.converged

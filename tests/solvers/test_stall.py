@@ -5,6 +5,7 @@ import importlib
 
 import numpy as np
 import pytest
+from _helpers import flat_through_contact
 
 import roughcontact as rc
 from roughcontact import SolveStatus
@@ -17,6 +18,18 @@ H = rc.self_affine((N, N), hurst=0.8, rms_slope=0.1, short_cutoff=4.0, seed=1)
 SUB = rc.Substrate((N, N))
 LAW = rc.SmoothLJ93(contact_modulus=1.0, pixel_size=1.0, work_of_adhesion=0.05)
 EPS = np.finfo(np.float64).eps
+
+
+def test_a_runaway_that_rounds_to_zero_is_not_converged():
+    # it once came back "converged", residual 0.0: recomputed, its force balance is 1e-2 E*
+    h, law, offset = flat_through_contact()
+    res = rc.solve(h, SUB, law, offset=offset)
+    assert res.status is SolveStatus.RUNAWAY and not res.converged, res.message
+    assert res.message.startswith("runaway: pressures reach"), res.message
+    assert float(np.abs(res.pressure).max()) > 1e12
+    # a cap stops short of the state: "iteration_limit" says so, not a verdict on it
+    capped = rc.solve(h, SUB, law, offset=offset, max_iter=1)
+    assert capped.status is SolveStatus.ITERATION_LIMIT
 
 
 @pytest.mark.parametrize("depth", [0.7, 1.0, 100.0])

@@ -15,13 +15,7 @@ import time
 import jax.numpy as jnp
 
 from ._pk_jax import check_jax_inputs
-from .adhesive_rules import (
-    RUNAWAY_RATIO,
-    floor_verdict,
-    largest_attraction,
-    physical_pressure_scale,
-    runaway_message,
-)
+from .adhesive_rules import floor_verdict, physical_pressure_scale, runaway_verdict
 from .bounded_rules import ON_WALL
 from .fourier import compliance_operator
 from .inputs import check_hard_wall_offset, check_problem, warm_deflection
@@ -92,13 +86,11 @@ def minimize_energy_jax(
                                    substrate, tol, physical)  # fmt: skip
         if code == sj.DETACHED:
             status, message = SolveStatus.DETACHED, _detached(load, it, min_gap)
-        if status is not SolveStatus.RUNAWAY and float(scale) > RUNAWAY_RATIO * float(
-            largest_attraction(interaction)
-        ):  # pressures far above the law's: judged on the physical scale (as NumPy does)
-            runaway = runaway_message(float(scale), physical(), substrate.contact_modulus,
-                                      float(residual))  # fmt: skip
-            if runaway is not None:
-                status, message = SolveStatus.RUNAWAY, runaway
+        if (runaway := runaway_verdict(
+            status, float(scale), interaction, physical, substrate.contact_modulus,
+            float(residual), tol, float(jnp.finfo(h.dtype).eps),
+        )) is not None:  # pressures far above the law's, on the physical scale (as NumPy)
+            status, message = SolveStatus.RUNAWAY, runaway
         return it, residual, status, message, *moved
 
     def physical():  # only for a stop at the floor (a transfer of the heights, then)

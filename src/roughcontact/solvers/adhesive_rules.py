@@ -53,6 +53,7 @@ import math
 import numpy as np
 
 from .._backend import array_namespace, is_numpy_array, to_numpy
+from .result import SolveStatus
 
 __all__ = [
     "FLOOR_ULPS",
@@ -76,6 +77,8 @@ __all__ = [
     "nests",
     "physical_pressure_scale",
     "rms_slope",
+    "runaway_message",
+    "runaway_verdict",
     "tension_lost",
     "uniform_shift",
     "uniform_stiffness",
@@ -254,6 +257,33 @@ def runaway_message(own_pressure, physical_scale, contact_modulus, residual):
         "above a force balance on the scale P; the offset pushes the surfaces through each "
         "other (below full contact): not an equilibrium"
     )
+
+
+def runaway_verdict(status, own_pressure, law, physical, contact_modulus, residual, tol, eps):
+    """The runaway message of a solve that claims a state, while its largest ``|p|``
+    (``own_pressure``, pressure) lies above :data:`RUNAWAY_RATIO` times the law's largest
+    attraction and :data:`RUNAWAY_RATIO` physical scales (``physical()``, only then
+    evaluated: :func:`physical_pressure_scale`); None otherwise.
+
+    The claims: ``status`` stalled (at the precision's floor), or converged with a
+    residual below ``tol`` (units of E*) that the precision cannot resolve, its rounding
+    floor ``eps * own_pressure / E*`` (``eps``: the machine epsilon of the solve's
+    precision) being above ``tol``. Such a state was pushed through full contact and
+    rounded its force balance to zero (64², offset below the surface's mean: uniform
+    p = 6e12 E*, residual 0, yet 1e-2 E* recomputed); a converged state whose force balance
+    is resolved is an equilibrium of the model, however deep in the core (1e6 E* at
+    floor 2e-10 < tol 1e-8). A cap, a callback or a failed line search already say the
+    state is not one. Shared by the NumPy loop (:mod:`.smooth`) and the compiled one
+    (:mod:`._adhesive_jax`).
+    """
+    if status is SolveStatus.CONVERGED:
+        if not eps * own_pressure / contact_modulus > tol:
+            return None
+    elif status is not SolveStatus.STALLED:
+        return None
+    if not own_pressure > RUNAWAY_RATIO * largest_attraction(law):
+        return None
+    return runaway_message(own_pressure, physical(), contact_modulus, residual)
 
 
 def gap_at_pressure(law, target: float, start: float) -> float:
