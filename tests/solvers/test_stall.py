@@ -81,6 +81,11 @@ def test_normal_solves_take_the_same_iterations(monkeypatch, offset, kwargs):
     monkeypatch.setattr(smooth, "FLOOR_ULPS", 0)  # never at the floor: the guard is off
     plain = rc.solve(H, SUB, LAW, offset=d, **kwargs)
     assert guarded.converged and plain.converged
+    # converged, and said to be outside linear elasticity when its pressures exceed E*
+    deep = float(np.abs(guarded.pressure).max()) > 1.0
+    assert ("beyond the linear-elastic half-space" in guarded.message) == deep, guarded.message
+    # below max(h) this surface is in full contact at a mean gap under a0: 2.9-1e6 E*
+    assert deep == (offset < 0) and (deep or guarded.message == "converged")
     assert guarded.iterations == plain.iterations
     np.testing.assert_array_equal(guarded.deflection, plain.deflection)
 

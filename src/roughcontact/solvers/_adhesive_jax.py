@@ -15,7 +15,7 @@ import time
 import jax.numpy as jnp
 
 from ._pk_jax import check_jax_inputs
-from .adhesive_rules import floor_verdict, physical_pressure_scale, runaway_verdict
+from .adhesive_rules import floor_verdict, physical_pressure_scale, state_verdict
 from .bounded_rules import ON_WALL
 from .fourier import compliance_operator
 from .inputs import check_hard_wall_offset, check_problem, warm_deflection
@@ -86,11 +86,10 @@ def minimize_energy_jax(
                                    substrate, tol, physical)  # fmt: skip
         if code == sj.DETACHED:
             status, message = SolveStatus.DETACHED, _detached(load, it, min_gap)
-        if (runaway := runaway_verdict(
-            status, float(scale), interaction, physical, substrate.contact_modulus,
+        status, message = state_verdict(
+            status, message, float(scale), interaction, physical, substrate.contact_modulus,
             float(residual), tol, float(jnp.finfo(h.dtype).eps),
-        )) is not None:  # pressures far above the law's, on the physical scale (as NumPy)
-            status, message = SolveStatus.RUNAWAY, runaway
+        )  # fmt: skip
         return it, residual, status, message, *moved
 
     def physical():  # only for a stop at the floor (a transfer of the heights, then)

@@ -78,7 +78,7 @@ __all__ = [
     "physical_pressure_scale",
     "rms_slope",
     "runaway_message",
-    "runaway_verdict",
+    "state_verdict",
     "tension_lost",
     "uniform_shift",
     "uniform_stiffness",
@@ -259,31 +259,43 @@ def runaway_message(own_pressure, physical_scale, contact_modulus, residual):
     )
 
 
-def runaway_verdict(status, own_pressure, law, physical, contact_modulus, residual, tol, eps):
-    """The runaway message of a solve that claims a state, while its largest ``|p|``
-    (``own_pressure``, pressure) lies above :data:`RUNAWAY_RATIO` times the law's largest
-    attraction and :data:`RUNAWAY_RATIO` physical scales (``physical()``, only then
-    evaluated: :func:`physical_pressure_scale`); None otherwise.
+def state_verdict(status, message, own_pressure, law, physical, contact_modulus, residual,
+                  tol, eps):
+    """``(status, message)`` of a smooth-law solve, judged on its largest ``|p|``
+    (``own_pressure``, pressure) once it has stopped; the rule of the NumPy loop
+    (:mod:`.smooth`) and the compiled one (:mod:`._adhesive_jax`), stated once.
 
-    The claims: ``status`` stalled (at the precision's floor), or converged with a
-    residual below ``tol`` (units of E*) that the precision cannot resolve, its rounding
-    floor ``eps * own_pressure / E*`` (``eps``: the machine epsilon of the solve's
-    precision) being above ``tol``. Such a state was pushed through full contact and
-    rounded its force balance to zero (64², offset below the surface's mean: uniform
-    p = 6e12 E*, residual 0, yet 1e-2 E* recomputed); a converged state whose force balance
-    is resolved is an equilibrium of the model, however deep in the core (1e6 E* at
-    floor 2e-10 < tol 1e-8). A cap, a callback or a failed line search already say the
-    state is not one. Shared by the NumPy loop (:mod:`.smooth`) and the compiled one
-    (:mod:`._adhesive_jax`).
+    *Runaway.* A solve that claims a state (``status`` stalled at its precision's floor,
+    or converged with a residual below ``tol``, units of E*, that its precision cannot
+    resolve: the rounding floor ``eps * own_pressure / E*`` above ``tol``, ``eps`` the
+    machine epsilon of the solve's precision) with pressures above :data:`RUNAWAY_RATIO`
+    times the law's largest attraction and :data:`RUNAWAY_RATIO` physical scales
+    (``physical()``, only then evaluated: :func:`physical_pressure_scale`) was pushed
+    through full contact and rounded its force balance to zero (64², offset below the
+    surface's mean: uniform p = 6e12 E*, residual 0, yet 1e-2 E* recomputed): it becomes
+    :attr:`SolveStatus.RUNAWAY`. A cap, a callback or a failed line search already say the
+    state is not an equilibrium.
+
+    *Beyond linear elasticity.* A converged state whose force balance is resolved is an
+    equilibrium of the model however deep in the core (1e3 E* at a mean gap of 0.38 a0),
+    but the elastic half-space holds for pressures far below E* (small strains; states of
+    an approach reach ~0.2 E* even at a mean gap of a0): above E* the message says so.
     """
-    if status is SolveStatus.CONVERGED:
-        if not eps * own_pressure / contact_modulus > tol:
-            return None
-    elif status is not SolveStatus.STALLED:
-        return None
-    if not own_pressure > RUNAWAY_RATIO * largest_attraction(law):
-        return None
-    return runaway_message(own_pressure, physical(), contact_modulus, residual)
+    converged = status is SolveStatus.CONVERGED
+    claims = status is SolveStatus.STALLED or (
+        converged and eps * own_pressure / contact_modulus > tol
+    )
+    if claims and own_pressure > RUNAWAY_RATIO * largest_attraction(law):
+        runaway = runaway_message(own_pressure, physical(), contact_modulus, residual)
+        if runaway is not None:
+            return SolveStatus.RUNAWAY, runaway
+    if converged and own_pressure > contact_modulus:
+        message = (
+            f"{message}; note: pressures reach {own_pressure / contact_modulus:.3g} E*, "
+            "beyond the linear-elastic half-space (valid for |p| << E*): the surfaces are "
+            "pressed deep into the interaction's repulsive core"
+        )
+    return status, message
 
 
 def gap_at_pressure(law, target: float, start: float) -> float:

@@ -118,7 +118,7 @@ from ._block import (  # noqa: F401 - STIFF_FRACTION, _precondition, _stiff_site
 )
 from ._free_mean import FreeMean
 from ._inplace import BAND_MARGIN, StickyBand, Workspace
-from .adhesive_rules import floor_verdict, physical_pressure_scale, runaway_verdict
+from .adhesive_rules import floor_verdict, physical_pressure_scale, state_verdict
 from .fourier import compliance_operator, on_work_grid, patch_sites, stiffness_operator
 from .inputs import check_problem, warm_deflection
 from .line_search import line_minimum
@@ -465,12 +465,11 @@ def minimize_energy(
     if patch is not None:  # the patch of the work grid (no pressure on the padding)
         gap, deflection = gap[patch], deflection[patch]
     p_int = _local(interaction.pressure, cutoff, gap)
-    if (runaway := runaway_verdict(
-        status, float(largest(p_int)), interaction,
+    status, message = state_verdict(
+        status, message, float(largest(p_int)), interaction,
         lambda: physical_pressure_scale(h, substrate, interaction), es, residual, tol,
         float(np.finfo(p_int.dtype).eps),
-    )) is not None:  # "converged" with pressures beyond any elastic equilibrium
-        status, message = SolveStatus.RUNAWAY, runaway
+    )  # fmt: skip
     rep, att = interaction.classify(gap)
     return make_result(
         h,
