@@ -131,3 +131,26 @@ def test_hard_core_cold_load_control_starts_from_the_coarse_grid(monkeypatch):
     monkeypatch.setattr(load_control, "nests", lambda shape: False)
     alone = rc.solve(h, sub, law, load=0.0)
     assert alone.converged and np.abs(alone.gap - res.gap).max() < 1e-6
+
+
+def test_a_cold_hard_core_that_crawls_into_contact_restarts_from_the_hard_wall(monkeypatch):
+    # a weak, short-ranged Maugis-Dugdale law on a rough surface at load 0: from first
+    # contact the projected steps crawl through the jump into contact (2036 iterations
+    # here, the 5000-iteration cap on some 128² surfaces); after COLD_HARD_CORE_BUDGET
+    # the solve starts again from the hard-wall state at load sigma_max and unloads
+    h = rc.self_affine((64, 64), hurst=0.5, rms_slope=0.2, short_cutoff=4, seed=1)
+    sub = rc.Substrate(h.shape)
+    law = rc.MaugisDugdale(work_of_adhesion=0.002, range=0.2)
+    res = rc.solve(h, sub, law, load=0.0)
+    assert res.status is SolveStatus.CONVERGED, res.message
+    assert abs(res.load) <= res.tol and 0 < res.repulsive_area < 0.05
+    assert "started from the hard-wall state" in res.message and "hysteresis" in res.message
+    assert res.iterations < load_control.COLD_HARD_CORE_BUDGET + 100
+    assert float(np.abs(res.pressure).max()) < 10 * law.work_of_adhesion / law.range + 1
+    # a solve that goes well within the budget is not restarted
+    easy = rc.solve(h, sub, law, load=1e-3)
+    assert easy.converged and "hard-wall" not in easy.message
+    # without the budget the same solve crawls (what it did before)
+    monkeypatch.setattr(load_control, "COLD_HARD_CORE_BUDGET", 10**9)
+    crawl = rc.solve(h, sub, law, load=0.0, max_iter=1000)
+    assert not crawl.converged and crawl.status is SolveStatus.ITERATION_LIMIT

@@ -8,7 +8,9 @@ mode of the gap is free and its force is the load not carried; on the wall the m
 the load): about the cost of an offset-controlled solve (cold from 128² on started from the
 2x2-coarsened grid's state, :func:`_coarse_start`: 0.5-1.0x its iterations at 128²-256²
 for a smooth law, 0.6-1.6x for a hard core; 1.05-1.1x a warm path step; against 10-30x
-for the search below: benchmarks/README.md).
+for the search below: benchmarks/README.md). A cold hard-core solve that crawls through
+the jump into contact starts again from a hard-wall state after
+:data:`COLD_HARD_CORE_BUDGET` iterations (:func:`_from_hard_wall`).
 Where that fails (a non-finite state, a failed line search), and for every other case, the
 root search over nested solves below.
 
@@ -48,6 +50,7 @@ from .._backend import array_namespace, dtype_name, is_numpy_array
 from .adhesive_rules import (
     NESTED_TOL,
     carrying,
+    largest_attraction,
     lowest_smooth_offset,
     nests,
     physical_pressure_scale,
@@ -64,6 +67,41 @@ __all__ = ["solve_at_load"]
 #: (:mod:`.adhesive_rules`); beyond (1e9 E*: 3300 iterations there, ~600 by the nested
 #: search, which starts at full contact at the load) the nested root search.
 ONE_MINIMISATION_LOADS = 100.0
+
+
+#: A cold load-controlled solve with a hard-core law (Maugis–Dugdale, Exponential) gets this
+#: many iterations from first contact (the nested start's included); beyond, it starts
+#: again from a hard-wall state (:func:`_from_hard_wall`). Measured (128², 36 surfaces and
+#: laws, loads -1e-4, 0, 1e-3 E*): from first contact 5-130 iterations where the jump into
+#: contact goes well, but 345-5000 (the cap: not converged) for short-ranged or weak
+#: Maugis-Dugdale laws at loads <= 0, where the projected steps crawl through the jump
+#: (the wall's sites change every iteration, restarting the conjugate directions); from the
+#: hard-wall state 13-25 hard-wall and 1-59 adhesive iterations in every case.
+COLD_HARD_CORE_BUDGET = 150
+
+
+def _from_hard_wall(run, heights, substrate, interaction, load, max_iter, total):
+    """The load-controlled solve again, from the hard-wall state at load
+    ``max(load, 0) + sigma_max`` (the law's largest attraction, pressure): its offset and
+    deflection, contacts already formed. ``(result, what the message adds)``.
+
+    That start lies deeper in contact than the adhesive state, which the solve reaches by
+    unloading: on the unloading branch, which can hold more contact at the same load than
+    the approach from first contact (adhesion hysteresis); the message says so.
+    """
+    from ..interactions import HardWall
+    from .solve import solve
+
+    target = max(load, 0.0) + largest_attraction(interaction)
+    hard = solve(heights, substrate, HardWall(), load=target, tol=1e-8)
+    total["it"] += hard.iterations
+    res = run(load, float(hard.offset), hard, max(max_iter - hard.iterations, 1))
+    return res, (
+        f"; started from the hard-wall state at load {target:.3g} E* after "
+        f"{COLD_HARD_CORE_BUDGET} iterations from first contact did not converge (a slow "
+        "jump into contact): the state reached by unloading from it, which can hold more "
+        "contact than an approach to this load (adhesion hysteresis)"
+    )
 
 
 def _one_minimisation(minimize, heights, substrate) -> bool:
@@ -193,10 +231,10 @@ def solve_at_load(
     ):
         # the load inside the one minimisation (:mod:`._free_mean`): the cost of an
         # offset-controlled solve; the nested search below only where it fails
-        def run(target, start, init):
+        def run(target, start, init, cap=max_iter):
             # nested iteration (cold: from the coarse grid's state, if that converged)
             if init is None and (coarse := _coarse_start(
-                    minimize, heights, substrate, interaction, target, tol, max_iter,
+                    minimize, heights, substrate, interaction, target, tol, cap,
                     dtype)) is not None:  # fmt: skip
                 total["coarse"] += coarse[2]
                 if coarse[0] is not None:
@@ -204,27 +242,39 @@ def solve_at_load(
             with checked_heights(heights, stats), carrying(target):
                 res = minimize(
                     heights, substrate, interaction, offset=start, initial=init, tol=tol,
-                    max_iter=max_iter, callback=callback, dtype=dtype, load=target,
+                    max_iter=cap, callback=callback, dtype=dtype, load=target,
                 )  # fmt: skip
             total["it"] += res.iterations
             return res
 
-        res = run(load, d_a, initial)
+        budget = interaction.hard_core and max_iter > COLD_HARD_CORE_BUDGET
+        restarted = []  # what the message adds about a restart from a hard-wall state
+
+        def cold(target):
+            # a hard core: from first contact within a budget, else from a hard-wall state
+            res = run(target, d_a, None, COLD_HARD_CORE_BUDGET if budget else max_iter)
+            if budget and res.status is SolveStatus.ITERATION_LIMIT:
+                res, note = _from_hard_wall(run, heights, substrate, interaction, target,
+                                            max_iter - res.iterations, total)  # fmt: skip
+                restarted.append(note)
+            return res
+
+        res = cold(load) if initial is None else run(load, d_a, initial)
         if res.status is SolveStatus.DETACHED and initial is None:
             # a cold tensile load pulls a barely touching surface off: into contact at
             # load 0 first (the jump in), then pulled to the load from that state
-            first = run(0.0, d_a, None)
+            first = cold(0.0)
             if first.converged:
                 res = run(load, first.offset, first)
         if res.converged and abs(res.load - load) <= load_tol:
             full = interaction.hard_core and res.repulsive_area >= 1.0
             return finish(res, True, "converged (load control)" + (
                 "; full contact: every site on the wall, whose reaction carries the load at "
-                "offset mean(heights)" if full else ""))  # fmt: skip
+                "offset mean(heights)" if full else "") + "".join(restarted[:1]))  # fmt: skip
         stops = (SolveStatus.CALLBACK, SolveStatus.ITERATION_LIMIT, SolveStatus.STALLED,
                  SolveStatus.DETACHED)  # fmt: skip
         if res.status in stops:
-            return finish(res, False, res.message)
+            return finish(res, False, res.message + "".join(restarted[:1]))
     if load < 0 and initial is None and not states:
         # cold and tensile: the nested search would open up from first contact and find
         # the surfaces detached; the state at load 0 (the jump into contact) first
