@@ -70,13 +70,13 @@ ONE_MINIMISATION_LOADS = 100.0
 
 
 #: A cold load-controlled solve with a hard-core law (Maugis–Dugdale, Exponential) gets this
-#: many iterations from first contact (the nested start's included); beyond, it starts
-#: again from a hard-wall state (:func:`_from_hard_wall`). Measured (128², 36 surfaces and
-#: laws, loads -1e-4, 0, 1e-3 E*): from first contact 5-130 iterations where the jump into
-#: contact goes well, but 345-5000 (the cap: not converged) for short-ranged or weak
-#: Maugis-Dugdale laws at loads <= 0, where the projected steps crawl through the jump
-#: (the wall's sites change every iteration, restarting the conjugate directions); from the
-#: hard-wall state 13-25 hard-wall and 1-59 adhesive iterations in every case.
+#: many iterations from first contact (and its nested start's coarse solve as many); then
+#: it starts again from a hard-wall state (:func:`_from_hard_wall`). Measured (128², 36
+#: surfaces and laws, loads -1e-4, 0, 1e-3 E*): from first contact 5-130 iterations where
+#: the jump into contact goes well, but 345-5000 (the cap: not converged) for short-ranged
+#: or weak Maugis-Dugdale laws at loads <= 0, where the projected steps crawl through the
+#: jump (the wall's sites change every iteration, restarting the conjugate directions);
+#: from the hard-wall state 13-25 hard-wall and 1-59 adhesive iterations in every case.
 COLD_HARD_CORE_BUDGET = 150
 
 
