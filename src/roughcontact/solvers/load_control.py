@@ -56,6 +56,7 @@ from .adhesive_rules import (
     physical_pressure_scale,
 )
 from .inputs import check_problem, checked_heights, height_statistics
+from .polonsky_keer import polonsky_keer
 from .result import SolveStatus
 from .roots import false_position, illinois
 
@@ -89,11 +90,8 @@ def _from_hard_wall(run, heights, substrate, interaction, load, max_iter, total)
     unloading: on the unloading branch, which can hold more contact at the same load than
     the approach from first contact (adhesion hysteresis); the message says so.
     """
-    from ..interactions import HardWall
-    from .solve import solve
-
     target = max(load, 0.0) + largest_attraction(interaction)
-    hard = solve(heights, substrate, HardWall(), load=target, tol=1e-8)
+    hard = polonsky_keer(heights, substrate, load=target, tol=1e-8)
     total["it"] += hard.iterations
     res = run(load, float(hard.offset), hard, max(max_iter - hard.iterations, 1))
     return res, (
