@@ -210,3 +210,16 @@ def test_the_coarse_start_in_the_compiled_loop(x64):
     assert "coarsened grid" in ref.message and "coarsened grid" in res.message
     agree(res, ref, 0.0)
     assert isinstance(res.pressure, jax.Array)
+
+
+def test_a_crawling_cold_hard_core_restarts_from_the_hard_wall_as_on_numpy(x64):
+    # the compiled bounded loop under the same budget and the same hard-wall start
+    # (the hard wall's compiled loop on the device): the NumPy loop's state
+    h = rc.self_affine((64, 64), hurst=0.5, rms_slope=0.2, short_cutoff=4, seed=1)
+    sub = rc.Substrate(h.shape)
+    law = rc.MaugisDugdale(work_of_adhesion=0.002, range=0.2)
+    ref = rc.solve(h, sub, law, load=0.0)
+    res = rc.solve(jnp.asarray(h), sub, law, load=0.0)
+    assert isinstance(res.pressure, jax.Array)
+    assert "started from the hard-wall state" in res.message
+    agree(res, ref, 0.0)
