@@ -73,6 +73,24 @@ def test_ctrl_c_between_steps_or_at_the_end_keeps_every_step(monkeypatch):
     assert (partial["repulsive_patches"].values >= 1).all()  # settled on the second try
 
 
+def test_ctrl_c_that_breaks_the_dataset_is_the_plain_interruption(monkeypatch):
+    # a signal inside an import (xarray's, pandas') leaves the module half-made: making the
+    # partial dataset then fails too, and the interruption is raised as it came (the CLI:
+    # one line, 130), never that second error
+    calls = {"n": 0}
+
+    def broken(*args, **kwargs):
+        calls["n"] += 1
+        if calls["n"] == 1:
+            raise KeyboardInterrupt
+        raise AttributeError("partially initialized module 'pandas'")
+
+    monkeypatch.setattr(path_module, "path_dataset", broken)
+    with pytest.raises(KeyboardInterrupt) as info:
+        rc.approach_retract(H, SUB, loads=LOADS[:2], retract=False)
+    assert type(info.value) is KeyboardInterrupt and calls["n"] == 2
+
+
 @pytest.fixture()
 def surface_file(tmp_path):
     out = tmp_path / "s.npy"

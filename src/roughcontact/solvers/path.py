@@ -202,6 +202,10 @@ def approach_retract(
             total_seconds=time.perf_counter() - t0,
         )  # fmt: skip
 
+    # the dataset's library now, before any step: a signal during an import leaves the
+    # module half-made, and the handler below makes the dataset (the path lost otherwise)
+    import xarray  # noqa: F401
+
     step = 0
     try:
         while step < plan.size:
@@ -241,14 +245,18 @@ def approach_retract(
                 saved = time.perf_counter()
             step += 1
         return dataset()
-    except KeyboardInterrupt:
+    except KeyboardInterrupt as interrupt:
         # anywhere in a step (the solve, its bookkeeping, progress, a checkpoint) or
         # between two, or while the last rows are settled: the partial path holds every
         # step whose row is in
         done = len(rows)
         i, where = (step, "in") if done == step and step < plan.size else (done - 1, "after")
+        try:
+            partial = dataset()
+        except Exception:  # (the signal broke what makes it): the plain interruption
+            raise interrupt from None
         raise PathInterrupted(
-            f"interrupted {where} step {i} ({control} = {plan.values[i]:g})", dataset()
+            f"interrupted {where} step {i} ({control} = {plan.values[i]:g})", partial
         ) from None
 
 
