@@ -21,6 +21,13 @@ them. Run alone or from ``adhesive.py --load-control`` (the same rows beside the
 
     python benchmarks/adhesive_load.py --sizes 128 256 --adhesion-lengths 0.005 0.05 --nested
     python benchmarks/adhesive_load.py --law exponential --sizes 128 --nested  # a hard core
+    python benchmarks/adhesive_load.py --law dugdale --surface rough --sizes 128 \
+        --adhesion-lengths 0.01 --loads 0 1e-3   # the cold hard core that crawled into contact
+
+``--surface rough`` takes ``self_affine((n, n), hurst=0.5, rms_slope=0.2, short_cutoff=4,
+seed=5)`` instead, where a cold Maugis-Dugdale solve at load 0 once crawled through the jump
+into contact (1210 iterations at 128², against 25 offset-controlled) and now restarts from
+a hard-wall state (its message says so).
 """
 
 from __future__ import annotations
@@ -33,17 +40,23 @@ import time
 import numpy as np
 
 
-def issue_surface(n: int) -> np.ndarray:
+def issue_surface(n: int, name: str = "issue") -> np.ndarray:
+    """The issue's surface, or ``rough`` (H 0.5, h'rms 0.2, seed 5: see the docstring)."""
     import roughcontact as rc
 
+    if name == "rough":
+        return rc.self_affine((n, n), hurst=0.5, rms_slope=0.2, short_cutoff=4, seed=5)
     return rc.self_affine((n, n), hurst=0.8, rms_slope=0.1, short_cutoff=4, seed=7)
 
 
 def make_law(name: str, la: float):
     """``lj93smooth``: the paper's wall at adhesion length ``la``; ``exponential``: the
-    hard-core Exponential law with work of adhesion ``la`` E* a0 and range a0."""
+    hard-core Exponential law with work of adhesion ``la`` E* a0 and range a0;
+    ``dugdale``: Maugis-Dugdale with work of adhesion ``la`` E* a0 and range a0/2."""
     import roughcontact as rc
 
+    if name == "dugdale":
+        return rc.MaugisDugdale(work_of_adhesion=la, range=0.5)
     if name == "exponential":
         return rc.Exponential(work_of_adhesion=la, range=1.0)
     return rc.SmoothLJ93.from_adhesion_length(la)
@@ -111,14 +124,14 @@ COLD_HEADER = (
 
 
 def cold_cases(sizes, adhesion_lengths, loads, tol, max_iter, nested, log=print,
-               law_name="lj93smooth", coarse_start=True):
+               law_name="lj93smooth", coarse_start=True, surface="issue"):
     """The issue's cold cases: one dict per (n, la, load)."""
     import roughcontact as rc
 
     out = []
     log(COLD_HEADER)
     for n in sizes:
-        h = issue_surface(n)
+        h = issue_surface(n, surface)
         sub = rc.Substrate((n, n))
         for la in adhesion_lengths:
             law = make_law(law_name, la)
@@ -128,9 +141,10 @@ def cold_cases(sizes, adhesion_lengths, loads, tol, max_iter, nested, log=print,
                     t0 = time.perf_counter()
                     res = rc.solve(h, sub, law, load=load, tol=tol, max_iter=max_iter)
                     t_load = time.perf_counter() - t0
+                restarted = "; restarted from a hard wall" if "hard-wall" in res.message else ""
                 log(_row("  load control", res, t_load,
-                         f"+ {coarse.iterations} its on the coarse grid" if coarse.iterations
-                         else ""))  # fmt: skip
+                         (f"+ {coarse.iterations} its on the coarse grid" if coarse.iterations
+                          else "") + restarted))  # fmt: skip
                 t0 = time.perf_counter()
                 same = rc.solve(h, sub, law, offset=res.offset, tol=tol, max_iter=max_iter)
                 t_off = time.perf_counter() - t0
@@ -146,6 +160,7 @@ def cold_cases(sizes, adhesion_lengths, loads, tol, max_iter, nested, log=print,
                     same_state_max_gap_difference=gap,
                     ratio=res.iterations / max(same.iterations, 1),
                     coarse_iterations=coarse.iterations, time_ratio=t_load / t_off,
+                    surface=surface, restarted_from_hard_wall=bool(restarted),
                 )  # fmt: skip
                 if nested:
                     t0 = time.perf_counter()
@@ -160,13 +175,14 @@ def cold_cases(sizes, adhesion_lengths, loads, tol, max_iter, nested, log=print,
     return out
 
 
-def paths(sizes, adhesion_lengths, path_loads, tol, max_iter, log=print, law_name="lj93smooth"):
+def paths(sizes, adhesion_lengths, path_loads, tol, max_iter, log=print, law_name="lj93smooth",
+          surface="issue"):
     """Load- vs offset-controlled paths through the same states: one dict per (n, la)."""
     import roughcontact as rc
 
     out = []
     for n in sizes:
-        h = issue_surface(n)
+        h = issue_surface(n, surface)
         sub = rc.Substrate((n, n))
         for la in adhesion_lengths:
             law = make_law(law_name, la)
@@ -216,7 +232,7 @@ def add_arguments(ap, prefix=""):
 
 
 def run(sizes, adhesion_lengths, loads, path_loads, tol, max_iter, nested, log=print,
-        law_name="lj93smooth", coarse_start=True):
+        law_name="lj93smooth", coarse_start=True, surface="issue"):
     """Both parts; a 16² path first (untimed) loads what a first path imports."""
     import roughcontact as rc
 
@@ -224,10 +240,10 @@ def run(sizes, adhesion_lengths, loads, path_loads, tol, max_iter, nested, log=p
     law = rc.SmoothLJ93.from_adhesion_length(0.05)
     rc.approach_retract(h, rc.Substrate((16, 16)), law, loads=[0.0, 1e-3], retract=False)
     cold = cold_cases(sizes, adhesion_lengths, loads, tol, max_iter, nested, log, law_name,
-                      coarse_start)  # fmt: skip
+                      coarse_start, surface)  # fmt: skip
     path_loads = np.asarray(path_loads, dtype=float)
     with _CoarseCount(coarse_start):
-        path = paths(sizes, adhesion_lengths, path_loads, tol, max_iter, log, law_name)
+        path = paths(sizes, adhesion_lengths, path_loads, tol, max_iter, log, law_name, surface)
     return dict(cold=cold, paths=path)
 
 
@@ -237,14 +253,18 @@ def main(argv=None) -> int:
     ap.add_argument("--adhesion-lengths", type=float, nargs="+", default=[0.005, 0.05])
     ap.add_argument("--tol", type=float, default=1e-8)
     ap.add_argument("--max-iter", type=int, default=5000)
-    ap.add_argument("--law", choices=("lj93smooth", "exponential"), default="lj93smooth",
-                    help="exponential: hard core, work of adhesion la E* a0, range a0")  # fmt: skip
+    ap.add_argument("--law", choices=("lj93smooth", "exponential", "dugdale"),
+                    default="lj93smooth", help="exponential: hard core, work of adhesion la "
+                    "E* a0, range a0; dugdale: Maugis-Dugdale, la E* a0, range a0/2")  # fmt: skip
+    ap.add_argument("--surface", choices=("issue", "rough"), default="issue",
+                    help="rough: H 0.5, h'rms 0.2, seed 5 (see above)")  # fmt: skip
     ap.add_argument("--json", metavar="OUT")
     add_arguments(ap)
     args = ap.parse_args(argv)
     out = run(args.sizes, args.adhesion_lengths, args.loads, args.path_loads, args.tol,
               args.max_iter, args.nested, log=lambda s: print(s, flush=True),
-              law_name=args.law, coarse_start=not args.no_coarse_start)  # fmt: skip
+              law_name=args.law, coarse_start=not args.no_coarse_start,
+              surface=args.surface)  # fmt: skip
     if args.json:
         import json
 

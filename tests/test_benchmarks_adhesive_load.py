@@ -26,3 +26,20 @@ def test_adhesive_load_records_cold_cases_and_paths(tmp_path):
     (path,) = rec["paths"]
     assert path["converged"] and len(path["load_iterations"]) == 3
     assert "ratio load/offset iterations" in out.stdout and "# path n=32" in out.stdout
+
+
+def test_adhesive_load_takes_the_rough_surface_and_maugis_dugdale(tmp_path):
+    result = tmp_path / "load.json"
+    out = subprocess.run(
+        [sys.executable, "adhesive_load.py", "--sizes", "128", "--adhesion-lengths", "0.01",
+         "--law", "dugdale", "--surface", "rough", "--loads", "0", "--path-loads", "1e-3", "0",
+         "--json", str(result)],
+        capture_output=True, text=True, cwd=BENCH, timeout=300,
+    )  # fmt: skip
+    assert out.returncode == 0, out.stderr
+    (cold,) = json.loads(result.read_text())["cold"]
+    assert cold["surface"] == "rough" and cold["law"] == "dugdale"
+    assert cold["load_status"] == "converged" and abs(cold["load_reached"]) < 1e-8
+    # the case that crawled through the jump into contact (1210 iterations): now restarted
+    assert cold["restarted_from_hard_wall"] and "restarted from a hard wall" in out.stdout
+    assert cold["load_iterations"] < 300
