@@ -406,15 +406,22 @@ def contact_mode(v, active, floor, xp=np):
     arrays, the result too).
     """
     count = xp.sum(active)
-    n = active.size
     if xp is np and not count:
         return np.ones_like(v), floor
-    m = xp.sum(xp.where(active, v, 0.0)) / xp.maximum(count, 1)
-    touching = (count > 0) & (m > 0)
-    safe = xp.where(touching, m, 1.0)
-    u = xp.where(touching, 1.0 - v / safe.astype(v.dtype), 1.0)
-    k = xp.where(touching, CONTACT_FRACTION * count / n / safe, floor)
+    lifted, m, touching = _lifted(v, active, count, xp)
+    u = xp.where(touching, lifted, 1.0)
+    k = xp.where(touching, CONTACT_FRACTION * count / active.size / m, floor)
     return u, k
+
+
+def _lifted(v, sites, count, xp):
+    """``(1 - v / m, m, ok)``: ``m`` the mean of ``v`` over the ``count`` ``sites`` (1 where
+    not ``ok``: no site, or ``m <= 0``); the body lifted at fixed contact of
+    :func:`contact_mode` and :func:`lift_shape`."""
+    m = xp.sum(xp.where(sites, v, 0.0)) / xp.maximum(count, 1)
+    ok = (count > 0) & (m > 0)
+    safe = xp.where(ok, m, 1.0)
+    return 1.0 - v / safe.astype(v.dtype), safe, ok
 
 
 def uniform_shift(mean_gradient, k_u, reach, xp=np):
@@ -435,10 +442,9 @@ def lift_shape(v, stiff, xp=np):
     move with the block preconditioner's diagonal). ``ok``: some site is stiff and
     ``m > 0``; else ``u`` is zero. ``xp`` as in :func:`contact_mode`."""
     count = xp.sum(stiff)
-    m = xp.sum(xp.where(stiff, v, 0.0)) / xp.maximum(count, 1)
-    ok = (count > 0) & (count < stiff.size) & (m > 0)
-    safe = xp.where(ok, m, 1.0)
-    return xp.where(stiff | ~ok, 0.0, 1.0 - v / safe.astype(v.dtype)), ok
+    lifted, _, ok = _lifted(v, stiff, count, xp)
+    ok = ok & (count < stiff.size)
+    return xp.where(stiff | ~ok, 0.0, lifted), ok
 
 
 def pair_coefficients(h00, h01, h11, g0, g1, reach, xp=np):
