@@ -109,23 +109,20 @@ def _precondition(
         else:
             soft = gr * soft_sites
         soft_block = compliance(soft, out=result)
-        z = np.multiply(soft_block, soft_sites, out=out if out is not None else None)
+        z = np.multiply(soft_block, soft_sites, out=out)
         z += np.multiply(gr, full_diagonal, out=work.tmp)
         if rigid:  # mean-free
             z -= total(z) / gr.shape[0]
-        z_fast = work.cast(fast, z) if fast is not None else z
-        if background and fast is not None:
-            return z, in_background(elastic_pressure, z_fast, out=result)
-        return z, elastic_pressure(z_fast, out=result)
-    soft = work.cast(fast, gr) if fast is not None else gr.copy()
-    soft[stiff] = 0.0
-    soft_block = compliance(soft, out=result)
-    z_stiff = gr[stiff] * diagonal
-    shift = 0.0
-    if rigid:  # the mean of z, without a pass of its own
-        shift = (total(soft_block) - total(soft_block[stiff]) + total(z_stiff)) / gr.shape[0]
-    z = work.shifted(out if out is not None else np.empty_like(gr), soft_block, shift)
-    z[stiff] = z_stiff - shift
+    else:
+        soft = work.cast(fast, gr) if fast is not None else gr.copy()
+        soft[stiff] = 0.0
+        soft_block = compliance(soft, out=result)
+        z_stiff = gr[stiff] * diagonal
+        shift = 0.0
+        if rigid:  # the mean of z, without a pass of its own
+            shift = (total(soft_block) - total(soft_block[stiff]) + total(z_stiff)) / gr.shape[0]
+        z = work.shifted(out if out is not None else np.empty_like(gr), soft_block, shift)
+        z[stiff] = z_stiff - shift
     z_fast = work.cast(fast, z) if fast is not None else z
     if background and fast is not None:
         return z, in_background(elastic_pressure, z_fast, out=result)
