@@ -200,9 +200,7 @@ def lift_mode(interaction, gap, substrate, work):
         return None
     ku = in_single_precision(stiffness_operator(substrate, work_grid=True))(u)
     floor = substrate.contact_modulus * np.pi / (max(substrate.shape) * substrate.pixel_size)
-    du = d * u
-    h = (max(total(d) / n, floor), total(du) / n, (dot(u, ku) + dot(du, u)) / n)
-    return u, ku, h
+    return u, ku, tuple(float(x) for x in rules.lift_block(d, u, ku, floor, total, dot))
 
 
 def add_uniform(z, gr, k_u, reach, work):

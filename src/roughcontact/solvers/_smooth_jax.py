@@ -388,10 +388,8 @@ def run(st, k, *, law, rigid, stall, floor):
             v = _conv(jnp.where(stiff, 1.0 - a, -a).astype(f32), k.green32).astype(dt)
             u, ok = rules.lift_shape(v, stiff, xp=jnp)
             ku = _conv(u.astype(f32), k.stiff32).astype(dt)
-            floor = k.modulus * jnp.pi / k.size
-            du = d * u
-            h = jnp.stack([jnp.maximum(tot(d) / n, floor), tot(du) / n,
-                           (dot(u, ku) + dot(du, u)) / n]).astype(acc)  # fmt: skip
+            h = rules.lift_block(d, u, ku, k.modulus * jnp.pi / k.size, tot, dot, xp=jnp)
+            h = jnp.stack(h).astype(acc)
             return u, ku, h, ok
 
         u, ku, h, ok = lax.cond(due, lift, lambda: (st.lift_u, st.lift_ku, st.lift_h,

@@ -71,6 +71,7 @@ __all__ = [
     "floor_verdict",
     "gap_at_pressure",
     "largest_attraction",
+    "lift_block",
     "lift_shape",
     "pair_coefficients",
     "lowest_smooth_offset",
@@ -445,6 +446,16 @@ def lift_shape(v, stiff, xp=np):
     lifted, _, ok = _lifted(v, stiff, count, xp)
     ok = ok & (count < stiff.size)
     return xp.where(stiff | ~ok, 0.0, lifted), ok
+
+
+def lift_block(d, u, ku, floor, total, dot, xp=np):
+    """``(h00, h01, h11)`` of :func:`pair_coefficients` (per site, pressure/length): the
+    Hessian ``K + V''+`` on the directions ``1`` and ``u`` (:func:`lift_shape`), ``d`` the
+    curvature ``V''+``, ``ku`` = ``K u``, ``floor`` = ``E* pi / L``; ``total`` and ``dot``
+    the caller's sums (NumPy's or a compiled loop's accumulating ones)."""
+    n = d.size
+    du = d * u
+    return xp.maximum(total(d) / n, floor), total(du) / n, (dot(u, ku) + dot(du, u)) / n
 
 
 def pair_coefficients(h00, h01, h11, g0, g1, reach, xp=np):
