@@ -191,3 +191,29 @@ def test_single_precision_convolutions_reach_float64_accuracy(sphere, law):
     assert res.converged and res.residual <= 1e-12
     elastic = sub.pressure(res.deflection) + res.load
     np.testing.assert_allclose(elastic, res.pressure, atol=5e-12)
+
+
+@pytest.mark.parametrize(
+    "law",
+    [Exponential(work_of_adhesion=0.05, range=0.2), MaugisDugdale(0.01, range=0.5)],
+    ids=["exponential", "dugdale"],
+)
+def test_offset_at_the_mean_is_full_contact_at_its_smallest_load(law):
+    # with a rigid mean, offset = mean(h) admits one state, every site on the wall; its
+    # load is not fixed by the offset. The loop used to leave half the sites "free" with
+    # an imbalance no feasible step reduces (the iteration cap: 5000 iterations at 256²,
+    # where load control had ended in full contact). Now converged at once, with the
+    # smallest load, the limit of the states just above that offset
+    h = rc.self_affine((64, 64), hurst=0.3, rms_slope=0.05, short_cutoff=4, seed=4)
+    sub = rc.Substrate(h.shape)
+    at = rc.solve(h, sub, law, offset=float(np.mean(h)))
+    assert at.status is rc.SolveStatus.CONVERGED and at.iterations <= 1, at.message
+    assert "full contact" in at.message and "smallest" in at.message
+    above = rc.solve(h, sub, law, offset=float(np.mean(h)) + 1e-9 * float(np.std(h)))
+    assert above.converged and "full contact" not in above.message
+    assert at.load == pytest.approx(above.load, rel=1e-5)
+    # every site presses on the wall: the traction is the law's pressure at contact plus a
+    # reaction >= 0, zero at the least compressed site
+    reaction = at.pressure - float(law.pressure(np.zeros(1))[0])
+    assert float(reaction.min()) == pytest.approx(0.0, abs=1e-9)
+    assert float(reaction.max()) > 1e-3

@@ -49,6 +49,18 @@ def test_same_answer_as_the_numpy_loop(x64, law):
     agree(res2, ref2)
 
 
+@pytest.mark.parametrize("law", [DUGDALE, HARD_EXP])
+def test_offset_at_the_mean_is_full_contact_as_on_numpy(x64, law):
+    # the one feasible state of offset = mean(h) (test_bounded.py): converged at once with
+    # the smallest reaction as the multiplier, and the same note
+    h, sub = rough()
+    d = float(np.mean(h))
+    ref = rc.solve(h, sub, law, offset=d)
+    res = rc.solve(jnp.asarray(h), sub, law, offset=d)
+    agree(res, ref)
+    assert "full contact" in res.message and "full contact" in ref.message
+
+
 def test_no_host_transfer_inside_the_loop(x64):
     from roughcontact.solvers import _bounded_jax as bj
 

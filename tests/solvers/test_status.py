@@ -156,6 +156,31 @@ def test_float32_stall_guard_reports_stalled():
     assert ops.stopping(False, 1.0, fresh, 5, 5)[0] is SolveStatus.ITERATION_LIMIT
 
 
+def test_crawl_guard_stops_a_crawl_as_an_iteration_limit_and_lets_progress_go_on():
+    ops = importlib.import_module("roughcontact.solvers.loop_control")
+    assert isinstance(ops.stall_guard("float64"), ops.StallGuard)
+    assert not isinstance(ops.stall_guard("float64"), ops.CrawlGuard)
+    with ops.guarding_crawl():
+        guard = ops.stall_guard("float64")
+    assert isinstance(guard, ops.CrawlGuard) and not ops.crawl_guarded()
+    # a 3-fold fall every 39 iterations goes on (even in steps of only 1 %) ...
+    residual, end = 1.0, None
+    for it in range(400):
+        residual *= 0.972  # 0.972**39 < 1/3
+        if (end := ops.stopping(False, residual, guard, it, 10**6)) is not None:
+            break
+    assert end is None
+    # ... a residual that falls 2.9-fold in 40 iterations is a crawl: stopped at once
+    crawl, stops = ops.CrawlGuard(), []
+    for it in range(200):
+        if (end := ops.stopping(False, 0.1 * 0.9737**it, crawl, it, 10**6)) is not None:
+            stops.append(it)
+            break
+    assert stops == [ops.CRAWL_PATIENCE]
+    assert end[0] is SolveStatus.ITERATION_LIMIT and "no progress" in end[1]
+    assert "40 iterations" in end[1] and "0.1" in end[1]
+
+
 def test_enum_is_exported_and_string_valued():
     assert rc.SolveStatus is SolveStatus is rc.solvers.SolveStatus
     assert "SolveStatus" in rc.__all__ and "SolveStatus" in rc.solvers.__all__

@@ -16,10 +16,10 @@ import jax.numpy as jnp
 
 from ._pk_jax import check_jax_inputs
 from .adhesive_rules import floor_verdict, physical_pressure_scale, state_verdict
-from .bounded_rules import ON_WALL
+from .bounded_rules import FULL_CONTACT_NOTE, ON_WALL
 from .fourier import compliance_operator
 from .inputs import check_hard_wall_offset, check_problem, warm_deflection
-from .loop_control import STALL_PATIENCE
+from .loop_control import STALL_PATIENCE, crawl_guarded, crawl_message
 from .observables import make_result
 from .result import SolveStatus
 from .smooth_rules import FLOOR_PATIENCE, REFRESH_EVERY, RESTART_EVERY
@@ -180,20 +180,28 @@ def minimize_energy_bounded_jax(
                        max_iter=int(max_iter), restart_every=int(restart_every),
                        load=None if load is None else float(load), heights=h,
                        law=interaction)  # fmt: skip
-    st = bj.run(st, k, law=interaction, rigid=bool(substrate.rigid_mean), stall=dtype == "float32")
+    crawl = crawl_guarded()  # load control's cold hard-core solve (loop_control)
+    rigid = bool(substrate.rigid_mean)
+    st = bj.run(st, k, law=interaction, rigid=rigid,
+                stall=dtype == "float32", crawl=crawl)  # fmt: skip
     names = {bj.CONVERGED: "converged", bj.LIMIT: "limit", bj.STALLED: "stalled",
              bj.LINE_SEARCH_FAILED: "line_search", bj.NO_DESCENT: "no_descent"}  # fmt: skip
 
     def resolve(values):  # the loop's outcome, read with the record (one transfer)
-        it, residual, code, best, min_gap, *moved = values
+        it, residual, code, best, min_gap, full, *moved = values
         it, code = int(it), int(code)
         status, message = _outcome(names.get(code, "non_finite"), it, best, 0.0, 0.0, substrate,
                                    tol)  # fmt: skip
+        if status is SolveStatus.CONVERGED and load is None and rigid and bool(full):
+            message += FULL_CONTACT_NOTE
+        if crawl and code == bj.LIMIT and it < max_iter:
+            message = crawl_message(float(best))
         if code == bj.DETACHED:
             status, message = SolveStatus.DETACHED, _detached(load, it, min_gap)
         return it, residual, status, message, *moved
 
-    scalars = (st.it, st.residual, st.status, st.best, jnp.min(k.base + st.w))
+    gap = k.base + st.w
+    scalars = (st.it, st.residual, st.status, st.best, jnp.min(gap), jnp.all(gap <= k.wall_tol))
     if load is None:
         traction, rep, att, deflection = bj.fields(st, k, interaction)
     else:  # the offset moved with the mean of w: read with the record

@@ -37,7 +37,14 @@ from .bounded_rules import (
     PROJECTION_MAX_STEPS,
     PROJECTION_RTOL,
 )
-from .loop_control import RELIABLE_DROP, RELIABLE_EVERY, STALL_IMPROVEMENT, STALL_PATIENCE
+from .loop_control import (
+    CRAWL_IMPROVEMENT,
+    CRAWL_PATIENCE,
+    RELIABLE_DROP,
+    RELIABLE_EVERY,
+    STALL_IMPROVEMENT,
+    STALL_PATIENCE,
+)
 
 __all__ = ["Constants", "State", "prepare", "project", "run"]
 
@@ -176,13 +183,14 @@ def _initial(w, k, rigid):
 
 
 @partial(
-    jax.jit, static_argnames=("law", "rigid", "stall"), donate_argnames="st"
+    jax.jit, static_argnames=("law", "rigid", "stall", "crawl"), donate_argnames="st"
 )  # the state's buffers are reused
-def run(st, k, *, law, rigid, stall):
+def run(st, k, *, law, rigid, stall, crawl=False):
     """Iterate from ``st`` until the status is not RUNNING; one compiled program.
 
     ``law``: the hard-core interaction (hashable); ``rigid``: the substrate's uniform mode
-    is rigid; ``stall``: the float32 stall guard.
+    is rigid; ``stall``: the float32 stall guard; ``crawl``: the crawl guard
+    (:func:`.loop_control.guarding_crawl`; a stop by it is LIMIT).
     """
     dt, acc = st.w.dtype, st.gz_old.dtype
     f32 = jnp.float32
@@ -212,8 +220,8 @@ def run(st, k, *, law, rigid, stall):
         r = kw - law.pressure(gap)
         on_wall = gap <= k.wall_tol
         mu = -k.load if free_mode else jnp.zeros((), acc)
-        if pin:
-            mu = masked_mean(r, ~on_wall, tot(r) / r.size)
+        if pin:  # every site on the wall: the smallest reaction (bounded_rules)
+            mu = masked_mean(r, ~on_wall, jnp.min(r).astype(acc))
         active = on_wall & (r - mu.astype(dt) > 0)
         free = ~active
         if pin:
@@ -331,13 +339,15 @@ def run(st, k, *, law, rigid, stall):
             lambda: st,
         )  # fmt: skip
         stalled = jnp.asarray(False)
-        if stall:
-            improved = residual < STALL_IMPROVEMENT * st.best
+        if stall or crawl:  # the crawl guard replaces the float32 stall guard (loop_control)
+            factor = CRAWL_IMPROVEMENT if crawl else STALL_IMPROVEMENT
+            improved = residual < factor * st.best
             st = st._replace(best=jnp.where(improved, residual, st.best),
                              since_best=jnp.where(improved, 0, st.since_best + 1))  # fmt: skip
-            stalled = st.since_best >= STALL_PATIENCE
+            stalled = st.since_best >= (CRAWL_PATIENCE if crawl else STALL_PATIENCE)
         done = (residual <= k.tol) | ~jnp.any(free)
-        status = jnp.select([done, stalled, st.it >= k.max_iter], [CONVERGED, STALLED, LIMIT],
+        status = jnp.select([done, stalled, st.it >= k.max_iter],
+                            [CONVERGED, LIMIT if crawl else STALLED, LIMIT],
                             RUNNING).astype(jnp.int32)  # fmt: skip
         st = st._replace(residual=residual)
         stop = st._replace(status=status, mu=mu, free=free)

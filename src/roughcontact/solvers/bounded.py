@@ -66,7 +66,7 @@ from .._backend import dtype_name
 from ._free_mean import FreeMean
 from ._inplace import Workspace
 from ._projection import _projected_gradient_step, project_feasible
-from .bounded_rules import ON_WALL, PROJECTED_HALVINGS
+from .bounded_rules import FULL_CONTACT_NOTE, ON_WALL, PROJECTED_HALVINGS
 from .fourier import (
     compliance_operator,
     in_single_precision,
@@ -76,7 +76,7 @@ from .fourier import (
 )
 from .inputs import check_hard_wall_offset, check_problem, warm_deflection
 from .line_search import line_minimum
-from .loop_control import ReliableUpdates, StallGuard, stopping
+from .loop_control import ReliableUpdates, stall_guard, stopping
 from .observables import make_result
 from .reductions import dot as _dot
 from .reductions import total
@@ -202,7 +202,7 @@ def minimize_energy_bounded(
     gz_old, active_old = 1.0, None
     status, message = SolveStatus.ITERATION_LIMIT, "iteration cap reached"
     residual, it, mu = math.inf, 0, 0.0
-    stall = StallGuard(dtype_name(h))
+    stall = stall_guard(dtype_name(h))  # (the crawl guard under cold load control)
     reliable, exact = ReliableUpdates(tol), True  # exact: kw is K w from a fresh convolution
     free = np.ones(n, dtype=bool)
 
@@ -215,8 +215,8 @@ def minimize_energy_bounded(
         if patch is not None:
             on_wall = on_wall & patch
         mu = -work_load
-        if pin:
-            mu = masked_mean(r, ~on_wall, lambda: float(np.mean(r)))
+        if pin:  # every site on the wall: the smallest reaction (FULL_CONTACT_NOTE)
+            mu = masked_mean(r, ~on_wall, lambda: float(np.min(r)))
         active = on_wall & (r - mu > 0)
         free = ~active
         if pin:
@@ -305,6 +305,8 @@ def minimize_energy_bounded(
     if free_mode is not None:  # the offset moved with the mean of w
         moved = float(np.mean(w))
         offset, w = offset + moved, w - moved
+    if status is SolveStatus.CONVERGED and pin and bool(np.all(on_patch(gap) <= on_wall_tol)):
+        message += FULL_CONTACT_NOTE
     p_int = law(interaction.pressure, gap)
     traction = on_patch(np.where(free, p_int, kw - mu))  # none on the padding
     return make_result(

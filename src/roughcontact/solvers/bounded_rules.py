@@ -10,6 +10,7 @@ from __future__ import annotations
 
 __all__ = [
     "BOUNDED_LINE_SEARCH_RTOL",
+    "FULL_CONTACT_NOTE",
     "GRADIENT_HALVINGS",
     "ON_WALL",
     "PROJECTED_HALVINGS",
@@ -35,3 +36,15 @@ GRADIENT_HALVINGS = 40
 #: PROJECTION_MAX_STEPS steps, done when ``|sum| <= PROJECTION_RTOL (sum|lower| + sum|v|)``.
 PROJECTION_MAX_STEPS = 200
 PROJECTION_RTOL = 1e-13
+
+#: What a converged offset-controlled state adds when every site is on the wall: with a
+#: rigid mean that is the offset mean(heights) (within ON_WALL), whose one feasible state is
+#: full contact. Its load is not fixed by the offset: the loops take the multiplier of the
+#: mean as the smallest wall reaction (mu = min r), so that every site presses on the wall
+#: and the least compressed one with zero traction (before, mu = mean r left half the sites
+#: "free" with a force imbalance no feasible step could reduce: the iteration cap).
+FULL_CONTACT_NOTE = (
+    "; full contact: every site on the wall at offset mean(heights), where the load is "
+    "any at or above the one reported (its smallest: the least compressed site at zero "
+    "traction)"
+)
