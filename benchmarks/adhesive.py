@@ -103,17 +103,22 @@ def make_law(adhesion_length: float, stiffness: float | None):
     )
 
 
-def approach_offsets(h: np.ndarray, steps: int, end_load: float) -> dict:
-    """The displacement schedule (see the module docstring)."""
+def approach_offsets(h: np.ndarray, steps: int, end_load: float, step=None) -> dict:
+    """The displacement schedule (see the module docstring); with ``step`` (length) steps
+    of that size from the start, as many as reach the end (the last one shorter)."""
     import roughcontact as rc
 
     sub = rc.Substrate(h.shape, contact_modulus=ES, pixel_size=A0)
     hw = rc.solve(h, sub, rc.HardWall(), load=end_load, tol=1e-8)
     d_start = float(h.max()) + A0
     d_end = float(hw.offset) + A0
-    k = np.arange(1, steps + 1)
+    if step is not None:
+        steps = max(1, int(np.ceil((d_start - d_end) / step - 1e-9)))
+        offsets = np.maximum(d_start - step * np.arange(1, steps + 1), d_end)
+    else:
+        offsets = d_start - (d_start - d_end) * np.arange(1, steps + 1) / steps
     return dict(
-        offsets=d_start - (d_start - d_end) * k / steps,
+        offsets=offsets,
         d_start=d_start,
         d_end=d_end,
         hardwall_area=float(hw.repulsive_area),
@@ -225,11 +230,11 @@ def run(args, log=print) -> dict:
     for n in args.sizes:
         h = surface(n, args.seed)
         fft = fft_pair_seconds(n, args.fft_workers)
-        sched = approach_offsets(h, args.steps, args.end_load)
+        sched = approach_offsets(h, args.steps, args.end_load, args.offset_step)
         offsets = sched["offsets"]
         log(
             f"# n={n}: h_rms {np.std(h):.4f}, offsets {sched['d_start']:.4f} -> "
-            f"{sched['d_end']:.4f} in {args.steps} steps (hard-wall contact at the end "
+            f"{sched['d_end']:.4f} in {len(offsets)} steps (hard-wall contact at the end "
             f"load {100 * sched['hardwall_area']:.2f} %), FFT pair {1e3 * fft:.2f} ms"
         )
         for la in args.adhesion_lengths:
@@ -341,6 +346,13 @@ def main(argv=None) -> int:
         help="site stiffness k in E*/a0 (default 0.5, the paper); Delta_r from w = k Delta_r^2/12",
     )
     ap.add_argument("--steps", type=int, default=10)
+    ap.add_argument(
+        "--offset-step",
+        type=float,
+        default=None,
+        help="steps of this offset change (a0) over the same range instead of --steps "
+        "(the iterations per step at equal steps across sizes: the range grows with n)",
+    )
     ap.add_argument("--tol", type=float, default=1e-6, help="max force imbalance / E*")
     ap.add_argument("--peers", nargs="*", default=list(PEERS), choices=PEERS)
     ap.add_argument("--max-iter", type=int, default=5000, help="iteration cap per step")
@@ -410,7 +422,9 @@ def main(argv=None) -> int:
         meta["threads"] = threads
         meta["threadpools"] = threads["threadpools"]
         print(
-            f"# adhesive approach, {args.steps} steps, tol {args.tol:g} (max force imbalance / "
+            f"# adhesive approach, "
+            f"{f'steps of {args.offset_step:g} a0' if args.offset_step else f'{args.steps} steps'}"
+            f", tol {args.tol:g} (max force imbalance / "
             f"E*), cap {args.max_iter} it/step, roughcontact median of {args.repeats}, peers "
             f"{args.peer_repeats}; Adhesion up to n={args.adhesion_max_size}, "
             f"{args.adhesion_time_cap:g} s/step cap; {meta['cores']} cores, FFT workers "
