@@ -44,3 +44,18 @@ def test_spectrum_refuses_a_coarse_block_that_does_not_divide_the_grid():
         capture_output=True, text=True, cwd=BENCH, timeout=60,
     )  # fmt: skip
     assert out.returncode == 2 and "--coarse-block must be" in out.stderr
+
+
+def test_adhesive_offset_step_takes_equal_steps_over_the_same_range(tmp_path):
+    import json
+
+    out = tmp_path / "offset_step.json"
+    run("adhesive.py", "--sizes", "32", "--adhesion-lengths", "0.05", "--peers",
+        "--repeats", "1", "--offset-step", "0.1", "--json", str(out))  # fmt: skip
+    (detail,) = json.loads(out.read_text())["details"]
+    offsets = [s["offset"] for s in detail["steps"]]
+    start, end = detail["schedule"]["d_start"], detail["schedule"]["d_end"]
+    assert offsets[-1] == end and len(offsets) == int(-(-(start - end) // 0.1))
+    # every step but the last (which ends on the range's end) moves the offset by 0.1 a0
+    steps = [a - b for a, b in zip([start, *offsets[:-2]], offsets[:-1], strict=True)]
+    assert max(abs(d - 0.1) for d in steps) < 1e-9 and 0 < offsets[-2] - end <= 0.1 + 1e-12
