@@ -151,6 +151,11 @@ def test_a_cold_hard_core_that_crawls_into_contact_restarts_from_the_hard_wall(m
     # 106 iterations in all here, hard-wall and unloading ones included (200 before it)
     assert res.iterations < load_control.COLD_HARD_CORE_BUDGET
     assert float(np.abs(res.pressure).max()) < 10 * law.work_of_adhesion / law.range + 1
+    # in single precision too: the hard-wall start takes float32's own tolerance (it
+    # asked for 1e-8, below float32's floor: a ParameterError blaming the user's tol)
+    single = rc.solve(h, sub, law, load=0.0, dtype="float32")
+    assert single.status is SolveStatus.CONVERGED and "hard-wall state" in single.message
+    assert single.repulsive_area == pytest.approx(res.repulsive_area, abs=2 / h.size)
     # a solve that goes well within the budget is not restarted
     easy = rc.solve(h, sub, law, load=1e-3)
     assert easy.converged and "hard-wall" not in easy.message

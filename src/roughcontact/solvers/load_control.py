@@ -94,7 +94,7 @@ def _from_hard_wall(run, heights, substrate, interaction, load, max_iter, total)
     the approach from first contact (adhesion hysteresis); the message says so.
     """
     target = max(load, 0.0) + largest_attraction(interaction)
-    hard = polonsky_keer(heights, substrate, load=target, tol=1e-8)
+    hard = polonsky_keer(heights, substrate, load=target)  # (its default tol: the dtype's)
     total["it"] += hard.iterations
     res = run(load, float(hard.offset), hard, max(max_iter - hard.iterations, 1))
     return res, (
