@@ -43,12 +43,14 @@ STALL_IMPROVEMENT = 0.99
 #: The crawl guard of a cold hard-core load-controlled solve (:func:`guarding_crawl`, the
 #: bounded loops): it stops when the residual has not fallen below CRAWL_IMPROVEMENT times
 #: its best for CRAWL_PATIENCE iterations, and load control starts again from a hard-wall
-#: state (:func:`.load_control._from_hard_wall`). Measured (128² and 256², 4 surfaces, 6
-#: Maugis-Dugdale and Exponential laws, loads -1e-4, 0, 1e-3 E*): every solve that
-#: converges within 150 iterations takes a 3-fold step down within every 40, while those
-#: that crawl through a slow jump into contact (the residual stuck at 3e-5 to 5e-4 E* for
-#: hundreds of iterations, the offset creeping) are caught after 41-97 iterations instead
-#: of the 150 of the budget.
+#: state (:func:`.load_control._from_hard_wall`). Measured (4 surfaces, 6 Maugis-Dugdale
+#: and Exponential laws, loads -1e-4, 0, 1e-3 E*): at 128² every solve that converges
+#: within 150 iterations takes a 3-fold step down within every 40 (at 256² all but two of
+#: 72, which converged in 116 and 141 and are restarted now), while those that crawl
+#: through a slow jump into contact (the residual stuck at 3e-5 to 5e-4 E* for hundreds of
+#: iterations, the offset creeping) are caught after 41-103 iterations instead of the 150
+#: of the budget: 23 % fewer fine-grid iterations over the 72 solves at 256²
+#: (benchmarks/README.md).
 CRAWL_PATIENCE = 40
 CRAWL_IMPROVEMENT = 1.0 / 3.0
 
