@@ -1,5 +1,7 @@
-"""benchmarks/warm_start.py and spectrum.py --coarse-block run and say what they measured."""
+"""benchmarks/warm_start.py, spectrum.py --coarse-block, fas.py and adhesive.py --offset-step
+run and say what they measured."""
 
+import json
 import re
 import subprocess
 import sys
@@ -47,8 +49,6 @@ def test_spectrum_refuses_a_coarse_block_that_does_not_divide_the_grid():
 
 
 def test_adhesive_offset_step_takes_equal_steps_over_the_same_range(tmp_path):
-    import json
-
     out = tmp_path / "offset_step.json"
     run("adhesive.py", "--sizes", "32", "--adhesion-lengths", "0.05", "--peers",
         "--repeats", "1", "--offset-step", "0.1", "--json", str(out))  # fmt: skip
@@ -59,3 +59,14 @@ def test_adhesive_offset_step_takes_equal_steps_over_the_same_range(tmp_path):
     # every step but the last (which ends on the range's end) moves the offset by 0.1 a0
     steps = [a - b for a, b in zip([start, *offsets[:-2]], offsets[:-1], strict=True)]
     assert max(abs(d - 0.1) for d in steps) < 1e-9 and 0 < offsets[-2] - end <= 0.1 + 1e-12
+
+
+def test_fas_cycles_reach_the_plain_solvers_states():
+    text = run("fas.py", "--size", "32", "--nu", "5", "--prolongation", "linear")
+    rows = [json.loads(line) for line in text.splitlines() if line.startswith("{")]
+    assert len(rows) == 10 and "fine" not in rows[0]  # step 1 starts cold: not compared
+    for row in rows[1:]:  # every FAS step converges to the plain solver's state
+        assert row["converged"] and row["area_diff_pixels"] == 0 and row["cycles"] >= 0
+        assert len(row["steps"]) == row["cycles"] and set(row["steps"]) <= {0.0, 0.25, 0.5, 1.0}
+    total = sum(r["fine"] for r in rows[1:])
+    assert f"FAS {total} fine" in text.splitlines()[-1]
