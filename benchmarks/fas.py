@@ -17,6 +17,9 @@ paired), once by the plain solver and once by cycles of
 3. the correction ``P (W - R w)`` (``P``: each block's value on its four sites), taken
    with the step length among 1, 1/2, 1/4, 0 that lowers the fine energy most;
 
+(``--widen F``: the coarse level's law with the same work of adhesion and F times the
+range, a first guess at a coarse-grained law;)
+
 until the fine solve converges. It reports the fine and the coarse iterations per step.
 The coarse iterations cost about a quarter of a fine one.
 
@@ -71,13 +74,14 @@ def energy(sub, law, heights, offset, w):
     return float(sub.energy(w)) + float(np.mean(law.energy(offset - heights + w)))
 
 
-def fas_step(h, sub, law, offset, w, tol, nu, max_cycles=200, kind="constant"):
+def fas_step(h, sub, law, offset, w, tol, nu, max_cycles=200, kind="constant", coarse_law=None):
     """One path step by FAS cycles from the deflection ``w``: ``(result, fine, coarse,
     cycles, accepted step lengths)``."""
     import roughcontact as rc
 
     coarse_sub = sub.coarsened()
     coarse_h = block_mean(h)
+    coarse_law = coarse_law or law
     fine = coarse = 0
     steps = []
     res = None
@@ -88,12 +92,12 @@ def fas_step(h, sub, law, offset, w, tol, nu, max_cycles=200, kind="constant"):
         if res.converged:
             return res, fine, coarse, cycle, steps
         w0 = block_mean(w)
-        b = imbalance(coarse_sub, law, coarse_h, offset, w0) - block_mean(
+        b = imbalance(coarse_sub, coarse_law, coarse_h, offset, w0) - block_mean(
             imbalance(sub, law, h, offset, w)
         )
         shift = coarse_sub.deflection(b - b.mean())  # K_H^-1 b (the mean is the load's)
         sol = rc.solve(
-            coarse_h - shift, coarse_sub, law, offset=offset, initial=w0 - shift,
+            coarse_h - shift, coarse_sub, coarse_law, offset=offset, initial=w0 - shift,
             tol=max(tol, 0.1 * float(res.residual)), max_iter=2000,
         )  # fmt: skip
         coarse += sol.iterations
@@ -110,20 +114,25 @@ def fas_step(h, sub, law, offset, w, tol, nu, max_cycles=200, kind="constant"):
     return res, fine, coarse, max_cycles, steps
 
 
-def run(size, la, seed, tol, nu, steps, kind="constant", log=print):
+def run(size, la, seed, tol, nu, steps, kind="constant", widen=1.0, log=print):
     import roughcontact as rc
 
     h = surface(size, seed)
     law = make_law(la, None)
     sub = rc.Substrate(h.shape, contact_modulus=ES, pixel_size=A0)
     offsets = approach_offsets(h, steps, 5e-4)["offsets"]
+    # the coarse level's law: the same w, its range widened (``widen`` times Delta_r)
+    coarse_law = law if widen == 1.0 else rc.SmoothLJ93(
+        contact_modulus=ES, pixel_size=A0, work_of_adhesion=law.work_of_adhesion,
+        range=widen * law.range)  # fmt: skip
     rows, prev = [], None
     for k, d in enumerate(offsets, 1):
         plain = rc.solve(h, sub, law, offset=float(d), initial=prev, tol=tol)
         row = dict(step=k, offset=float(d), plain=int(plain.iterations))
         if prev is not None:  # step 1 starts cold: the same solve in both
             res, fine, coarse, cycles, taken = fas_step(
-                h, sub, law, float(d), np.asarray(prev.deflection), tol, nu, kind=kind
+                h, sub, law, float(d), np.asarray(prev.deflection), tol, nu, kind=kind,
+                coarse_law=coarse_law,
             )
             pixels = round(abs(res.repulsive_area - plain.repulsive_area) * h.size)
             row.update(fine=fine, coarse=coarse, cycles=cycles, steps=taken,
@@ -143,14 +152,17 @@ def main(argv=None) -> int:
     ap.add_argument("--nu", type=int, default=5, help="fine iterations per cycle")
     ap.add_argument("--steps", type=int, default=10)
     ap.add_argument("--prolongation", choices=("constant", "linear"), default="constant")
+    ap.add_argument("--widen", type=float, default=1.0,
+                    help="the coarse level's law: the same w, the range times this")  # fmt: skip
     args = ap.parse_args(argv)
     rows = run(args.size, args.adhesion_length, args.seed, args.tol, args.nu, args.steps,
-               args.prolongation)
+               args.prolongation, args.widen)
     done = [r for r in rows if "fine" in r]
     print(
         f"# steps 2-{args.steps}: plain {sum(r['plain'] for r in done)} iterations; FAS "
         f"{sum(r['fine'] for r in done)} fine + {sum(r['coarse'] for r in done)} coarse "
-        f"(nu {args.nu}, {args.prolongation}); all converged: {all(r['converged'] for r in done)}"
+        f"(nu {args.nu}, {args.prolongation}, coarse range x{args.widen:g}); all converged: "
+        f"{all(r['converged'] for r in done)}"
     )
     return 0
 
