@@ -103,7 +103,28 @@ def test_exponential_hot_path_terms_are_its_evaluations(dtype):
     g = g.astype(dtype)
     strict = pytest.importorskip("array_api_strict")
     for arr in (g, strict.asarray(g)):
-        _, dv, d2v = law._evaluate(arr)
+        v, dv, d2v = law._evaluate(arr)
         np.testing.assert_array_equal(np.asarray(law.pressure(arr)), np.asarray(-dv))
         np.testing.assert_array_equal(np.asarray(law.curvature(arr)), np.asarray(d2v))
+        np.testing.assert_array_equal(np.asarray(law.energy(arr)), np.asarray(v))
         assert np.asarray(law.pressure(arr)).dtype == dtype
+        assert np.asarray(law.energy(arr)).dtype == dtype
+
+
+@pytest.mark.parametrize("dtype", [np.float64, np.float32])
+def test_dugdale_terms_alone_are_its_evaluations(dtype):
+    # the bounded loop evaluates the law 5-7 times per iteration: each term alone (fewer
+    # passes), the values of the full evaluation, inside, beyond and at the zone's end
+    law = rc.MaugisDugdale(work_of_adhesion=0.01, range=0.4)
+    g = np.concatenate([np.random.default_rng(2).uniform(-0.1, 1.0, 500),
+                        [0.0, -0.0, 0.4, np.nextafter(0.4, 0), np.inf]])  # fmt: skip
+    g = g.astype(dtype)
+    strict = pytest.importorskip("array_api_strict")
+    for arr in (g, strict.asarray(g)):
+        v, dv, d2v = law._evaluate(arr)
+        p = np.asarray(law.pressure(arr))
+        np.testing.assert_array_equal(p, np.asarray(-dv))
+        np.testing.assert_array_equal(np.signbit(p), np.signbit(np.asarray(-dv)))
+        np.testing.assert_array_equal(np.asarray(law.energy(arr)), np.asarray(v))
+        np.testing.assert_array_equal(np.asarray(law.curvature(arr)), np.asarray(d2v))
+        assert p.dtype == dtype and np.asarray(law.energy(arr)).dtype == dtype

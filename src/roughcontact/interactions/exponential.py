@@ -73,6 +73,14 @@ class Exponential(GapLaw):
         e = self._decay(gap)
         return -(constant(self.work_of_adhesion / self.range, e) * e)
 
+    def energy(self, gap):
+        """V(g), energy per area (pressure × length)."""
+        if self.core_stiffness is not None:
+            return self._evaluate(gap)[0]
+        # the bounded solver's projected steps evaluate it (``_evaluate(gap)[0]``'s values)
+        e = self._decay(gap)
+        return constant(-self.work_of_adhesion, e) * e
+
     def curvature(self, gap):
         """V''(g) (pressure / length)."""
         if self.core_stiffness is not None:
