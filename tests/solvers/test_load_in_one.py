@@ -148,7 +148,7 @@ def test_a_cold_hard_core_that_crawls_into_contact_restarts_from_the_hard_wall(m
     assert "started from the hard-wall state" in res.message and "hysteresis" in res.message
     assert "crawled" in res.message
     # caught by the crawl guard (40 iterations without a 3-fold fall), not the budget:
-    # 106 iterations in all here, hard-wall and unloading ones included (200 before it)
+    # 106 iterations in all here, the hard-wall and the unloading ones included
     assert res.iterations < load_control.COLD_HARD_CORE_BUDGET
     assert float(np.abs(res.pressure).max()) < 10 * law.work_of_adhesion / law.range + 1
     # in single precision too: the hard-wall start takes float32's own tolerance (it

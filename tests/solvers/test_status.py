@@ -163,14 +163,14 @@ def test_crawl_guard_stops_a_crawl_as_an_iteration_limit_and_lets_progress_go_on
     with ops.guarding_crawl():
         guard = ops.stall_guard("float64")
     assert isinstance(guard, ops.CrawlGuard) and not ops.crawl_guarded()
-    # a 3-fold fall every 39 iterations goes on (even in steps of only 1 %) ...
+    # a 3-fold fall within every 40 iterations goes on (steps of 2.8 %: 0.972**39 < 1/3) ...
     residual, end = 1.0, None
     for it in range(400):
-        residual *= 0.972  # 0.972**39 < 1/3
+        residual *= 0.972
         if (end := ops.stopping(False, residual, guard, it, 10**6)) is not None:
             break
     assert end is None
-    # ... a residual that falls 2.9-fold in 40 iterations is a crawl: stopped at once
+    # ... one that falls only 2.9-fold in 40 iterations is a crawl: stopped at the 40th
     crawl, stops = ops.CrawlGuard(), []
     for it in range(200):
         if (end := ops.stopping(False, 0.1 * 0.9737**it, crawl, it, 10**6)) is not None:
