@@ -14,14 +14,14 @@ paired), once by the plain solver and once by cycles of
    right-hand side ``b`` is taken into the heights, ``H' = H - K_H^-1 b`` (so the coarse
    problem is an ordinary solve: ``K W' - p(d - H' + W') = 0`` with ``W = W' + K_H^-1 b``),
    solved by the same solver to a tenth of the fine residual;
-3. the correction ``P (W - R w)`` (``P``: each block's value on its four sites), taken
-   with the step length among 1, 1/2, 1/4, 0 that lowers the fine energy most;
+3. the correction ``P (W - R w)`` (``P``: each block's value on its four sites, or with
+   ``--prolongation linear`` the bilinear interpolation), taken with the step length
+   among 1, 1/2, 1/4, 0 that lowers the fine energy most,
 
-(``--widen F``: the coarse level's law with the same work of adhesion and F times the
-range, a first guess at a coarse-grained law;)
-
-until the fine solve converges. It reports the fine and the coarse iterations per step.
-The coarse iterations cost about a quarter of a fine one.
+until the fine solve converges. It reports the fine and the coarse iterations per step
+(a coarse iteration costs about a quarter of a fine one). ``--widen F`` gives the coarse
+level a law with the same work of adhesion and F times the range, a first guess at a
+coarse-grained law.
 
     python benchmarks/fas.py --size 256 --adhesion-length 0.05
 """
