@@ -121,8 +121,10 @@ class StallGuard:
     In single precision the residual cannot fall below roughly ``1e-7 * max|p| / E*``
     (more under heavy compression); without this guard such a solve would spend its
     whole iteration cap there. Active only for float32: a float64 solve is never cut
-    short by it.
+    short by it. ``status``: what a stop by it reports.
     """
+
+    status = SolveStatus.STALLED
 
     def __init__(self, precision: str, patience: int = STALL_PATIENCE,
                  improvement: float = STALL_IMPROVEMENT, active: bool | None = None):  # fmt: skip
@@ -149,7 +151,10 @@ class StallGuard:
 class CrawlGuard(StallGuard):
     """:class:`StallGuard`'s test with the crawl guard's patience and improvement, always
     active (:func:`guarding_crawl`); it replaces the float32 stall guard, which cannot stop
-    a loop before it (no 3-fold fall in 40 iterations comes before no 1 % fall in 200)."""
+    a loop before it (no 3-fold fall in 40 iterations comes before no 1 % fall in 200). Its
+    stop is an ``iteration_limit``: load control starts again from a hard-wall state."""
+
+    status = SolveStatus.ITERATION_LIMIT
 
     def __init__(self):
         super().__init__("", CRAWL_PATIENCE, CRAWL_IMPROVEMENT, active=True)
@@ -167,15 +172,13 @@ def stall_guard(precision: str) -> StallGuard:
 def stopping(done: bool, residual: float, stall, it: int, max_iter: int):
     """Why an iteration loop stops here: ``(status, message)``, or None to go on.
 
-    ``done``: the convergence test passed; ``stall``: the loop's :class:`StallGuard`
-    (a :class:`CrawlGuard`'s stop is an ``iteration_limit``: load control starts again).
+    ``done``: the convergence test passed; ``stall``: the loop's :class:`StallGuard` (or
+    :class:`CrawlGuard`), whose ``status`` a stop by it reports.
     """
     if done:
         return SolveStatus.CONVERGED, "converged"
     if (stalled := stall(residual)) is not None:
-        if isinstance(stall, CrawlGuard):
-            return SolveStatus.ITERATION_LIMIT, stalled
-        return SolveStatus.STALLED, stalled
+        return stall.status, stalled
     if it >= max_iter:
         return SolveStatus.ITERATION_LIMIT, "iteration cap reached"
     return None

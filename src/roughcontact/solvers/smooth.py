@@ -158,6 +158,9 @@ class FloorGuard:
     stopped by it. float32 keeps ``stall`` (:class:`.loop_control.StallGuard`).
     """
 
+    status = SolveStatus.STALLED  # (what :func:`.loop_control.stopping` reports; the
+    # loop turns it into RUNAWAY where ``kind`` says so)
+
     def __init__(self, stall, precision, pressure_scale, contact_modulus, tol,
                  physical_scale=None):  # fmt: skip
         self.stall, self.scale = stall, pressure_scale  # scale(): max |p_int| now
