@@ -330,11 +330,11 @@ def test_ctrl_c_while_starting_is_one_line_and_130(tmp_path):
         time.sleep(delay)
         p.send_signal(signal.SIGINT)
         late = time.monotonic() - start > delay + 0.5
-        _, err = p.communicate(timeout=60)
+        _out, err = p.communicate(timeout=60)
         text = err.decode()
         if p.returncode == 0 and late and out.is_file():
             continue  # the command had finished: the signal came too late to test anything
-        assert p.returncode == 130, text
+        assert p.returncode == 130, (text, _out.decode()[-300:], delay, late, out.is_file())
         assert "Traceback" not in text and len(text.strip().splitlines()) == 1, text
         # at start-up "interrupted (Ctrl-C)"; once the path runs, the step it stopped in
         assert "interrupted" in text
@@ -342,6 +342,30 @@ def test_ctrl_c_while_starting_is_one_line_and_130(tmp_path):
         if len(interrupted) == 2:
             break
     assert interrupted, "every Ctrl-C came after the command had finished"
+
+
+def test_a_path_imports_its_dataset_and_writer_libraries_before_its_first_step(tmp_path):
+    # a Ctrl-C inside a first import (dask's, 0.8 s into `roughcontact path`) left the
+    # module half-made, and saving the partial path then failed with an AttributeError
+    # traceback: after load_libraries(write=True) neither making nor writing a path
+    # dataset imports anything of xarray, dask, distributed or the netCDF engine
+    code = (
+        "import sys, numpy as np, roughcontact as rc\n"
+        "from roughcontact.pathdata import load_libraries, write_path\n"
+        "load_libraries(write=True)\n"
+        "before = set(sys.modules)\n"
+        "h = rc.self_affine((16, 16), hurst=0.8, rms_slope=0.1, short_cutoff=4, seed=1)\n"
+        "ds = rc.approach_retract(h, rc.Substrate(h.shape), loads=[1e-3, 1e-2])\n"
+        f"write_path(ds, {str(tmp_path / 'p.nc')!r})\n"
+        "late = sorted(m for m in set(sys.modules) - before if m.split('.')[0] in\n"
+        "              ('xarray', 'dask', 'distributed', 'h5netcdf', 'h5py', 'netCDF4'))\n"
+        "print(late)\n"
+    )
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(sys.path))
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         timeout=120, env=env)  # fmt: skip
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.strip() == "[]"
 
 
 # --- the local cluster's private scratch directory -----------------------------------

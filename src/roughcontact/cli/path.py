@@ -10,6 +10,7 @@ import click
 from .._io import WriteError, check_writable
 from .._signals import EXIT_TERMINATED, deferred, exit_code
 from .._validate import MAX_PATH_STEPS, ParameterError
+from ..pathdata import load_libraries
 from ._common import (
     EXIT_FAILURE,
     EXIT_NOT_CONVERGED,
@@ -236,6 +237,7 @@ def path(
             _fail(f"{err}{kept}", EXIT_FAILURE)
         saved["steps"] = int(partial.sizes["step"])
 
+    load_libraries(write=True)  # before the first step (its docstring: why)
     try:
         run = run_path(
             h,

@@ -19,7 +19,7 @@ from .._backend import (
 )
 from .._validate import ParameterError, step_indices, step_list
 from ..analysis.contact_geometry import patch_count
-from ..pathdata import path_dataset
+from ..pathdata import load_libraries, path_dataset
 from .inputs import check_problem, checked_heights, height_statistics
 from .reductions import fetch
 from .result import STATE_SCALARS, SolveStatus
@@ -202,9 +202,9 @@ def approach_retract(
             total_seconds=time.perf_counter() - t0,
         )  # fmt: skip
 
-    # the dataset's library now, before any step: a signal during an import leaves the
+    # the dataset's libraries now, before any step: a signal during an import leaves the
     # module half-made, and the handler below makes the dataset (the path lost otherwise)
-    import xarray  # noqa: F401
+    load_libraries()
 
     step = 0
     try:
