@@ -34,7 +34,10 @@ def _start(tmp_path, make_study, name):
     tmp = tmp_path / "tmp"
     tmp.mkdir(exist_ok=True)
     env = dict(os.environ, PYTHONPATH=os.pathsep.join(sys.path), TMPDIR=str(tmp))
-    study = make_study(size=64, num=24)
+    # 8 paths of 128² and 96 steps: ~14 s on a quiet 2-core machine, so that a signal
+    # sent while the tasks run finds work left on a faster one (64² and 24 steps took 4 s,
+    # and a Ctrl-C 5 s after the start found the command finished)
+    study = make_study(size=128, num=96)
     out = tmp_path / name
     cmd = [sys.executable, str(script), "study", "run", str(study), "-o", str(out),
            "--workers", "2", "--no-progress"]  # fmt: skip
@@ -64,10 +67,25 @@ def _finish(proc, code, tmp):
     return lines[0]
 
 
-@pytest.mark.parametrize("delay", [1.5, 3.0, 5.0])
-def test_ctrl_c_to_the_process_group_while_the_cluster_starts_or_runs(tmp_path, make_study, delay):
+def _wait_for_the_tasks(proc, out):
+    """Until the study's record exists (the cluster is up and the tasks run)."""
+    deadline = time.monotonic() + 60
+    while not (out / "study.json").exists() and proc.poll() is None:
+        assert time.monotonic() < deadline
+        time.sleep(0.05)
+
+
+# (phase, seconds): 1.5 s after the start (the cluster starts), or that long after the
+# tasks began to run; signals timed from the start alone missed the run on a fast machine
+@pytest.mark.parametrize("phase, delay", [("start", 1.5), ("run", 0.5), ("run", 3.0)])
+def test_ctrl_c_to_the_process_group_while_the_cluster_starts_or_runs(
+    tmp_path, make_study, phase, delay
+):
     proc, tmp = _start(tmp_path, make_study, "out")
+    if phase == "run":
+        _wait_for_the_tasks(proc, tmp_path / "out")
     time.sleep(delay)
+    assert proc.poll() is None, "the study ended before the Ctrl-C: make it larger"
     os.killpg(proc.pid, signal.SIGINT)  # as the terminal does: every process of the group
     line = _finish(proc, 130, tmp)
     assert line.count("interrupted") == 1
@@ -75,12 +93,9 @@ def test_ctrl_c_to_the_process_group_while_the_cluster_starts_or_runs(tmp_path, 
 
 def test_sigterm_during_the_work_exits_143_at_once(tmp_path, make_study):
     proc, tmp = _start(tmp_path, make_study, "out")
-    out = tmp_path / "out"
-    deadline = time.monotonic() + 60
-    while not (out / "study.json").exists() and proc.poll() is None:  # the tasks run
-        assert time.monotonic() < deadline
-        time.sleep(0.05)
+    _wait_for_the_tasks(proc, tmp_path / "out")
     time.sleep(1.0)
+    assert proc.poll() is None, "the study ended before the SIGTERM: make it larger"
     proc.send_signal(signal.SIGTERM)  # to the command only, as a scheduler or kill does
     line = _finish(proc, 143, tmp)
     assert "terminated (SIGTERM)" in line and "--resume" in line
