@@ -40,6 +40,8 @@ def test_adhesive_load_takes_the_rough_surface_and_maugis_dugdale(tmp_path):
     (cold,) = json.loads(result.read_text())["cold"]
     assert cold["surface"] == "rough" and cold["law"] == "dugdale"
     assert cold["load_status"] == "converged" and abs(cold["load_reached"]) < 1e-8
-    # the case that crawled through the jump into contact (1210 iterations): now restarted
-    assert cold["restarted_from_hard_wall"] and "restarted from a hard wall" in out.stdout
-    assert cold["load_iterations"] < 300
+    # the case that crawled through the jump into contact (1210 iterations, then 212 and
+    # 146 with a restart from the hard wall): searched from the first wall contact, 27
+    # against 25 for the offset-controlled solve at the offset reached
+    assert not cold["restarted_from_hard_wall"] and "restarted from a hard wall" not in out.stdout
+    assert cold["load_iterations"] <= 2 * cold["offset_iterations"]

@@ -5,6 +5,8 @@ NumPy one-minimisation solve's iterations and answers, the load carried, honest 
 (the runaway / full-contact cases of ``test_load_control_runaway.py``), and a loop that
 never talks to the host (``jax.transfer_guard("disallow")``)."""
 
+import importlib
+
 import numpy as np
 import pytest
 from _helpers import assert_donated, donatable
@@ -15,6 +17,7 @@ from roughcontact.solvers.adhesive_rules import physical_pressure_scale
 
 jax = pytest.importorskip("jax")
 jnp = pytest.importorskip("jax.numpy")
+load_control = importlib.import_module("roughcontact.solvers.load_control")
 
 LAW = rc.SmoothLJ93.from_adhesion_length(0.005)
 STRONG = rc.SmoothLJ93.from_adhesion_length(0.05)
@@ -212,14 +215,35 @@ def test_the_coarse_start_in_the_compiled_loop(x64):
     assert isinstance(res.pressure, jax.Array)
 
 
-def test_a_crawling_cold_hard_core_restarts_from_the_hard_wall_as_on_numpy(x64):
-    # the compiled bounded loop under the same budget and the same hard-wall start
-    # (the hard wall's compiled loop on the device): the NumPy loop's state
+def _first_contact_case():
     h = rc.self_affine((64, 64), hurst=0.5, rms_slope=0.2, short_cutoff=4, seed=1)
-    sub = rc.Substrate(h.shape)
-    law = rc.MaugisDugdale(work_of_adhesion=0.002, range=0.2)
+    return h, rc.Substrate(h.shape), rc.MaugisDugdale(work_of_adhesion=0.002, range=0.2)
+
+
+def test_a_cold_hard_core_reaches_contact_from_the_first_wall_contact_as_on_numpy(x64):
+    # the compiled bounded loop's search upward from the first wall contact
+    # (bounded_rules.CONTACT_DOUBLINGS): the NumPy loop's state, no restart (94 iterations
+    # before, with a restart; 12 now). (With Maugis-Dugdale on this surface the two loops
+    # take 13 iterations each to two states carrying load 0: at iteration 3 their line
+    # searches get the same inputs to 1e-15 and stop at alpha 5.3 and 76.5, far beyond the
+    # wall, where the law is flat and the projected search takes over.)
+    h, sub, _ = _first_contact_case()
+    law = rc.Exponential(work_of_adhesion=0.002, range=0.2)
+    ref = rc.solve(h, sub, law, load=0.0)
+    res = rc.solve(jnp.asarray(h), sub, law, load=0.0)
+    assert isinstance(res.pressure, jax.Array)
+    assert "hard-wall" not in res.message and "hard-wall" not in ref.message
+    agree(res, ref, 0.0)
+
+
+def test_a_cold_hard_core_past_its_budget_restarts_as_on_numpy(x64, monkeypatch):
+    # the same budget and the same hard-wall start (the hard wall's compiled loop on the
+    # device), forced by a budget of 5 iterations: the NumPy loop's state
+    h, sub, law = _first_contact_case()
+    monkeypatch.setattr(load_control, "COLD_HARD_CORE_BUDGET", 5)
     ref = rc.solve(h, sub, law, load=0.0)
     res = rc.solve(jnp.asarray(h), sub, law, load=0.0)
     assert isinstance(res.pressure, jax.Array)
     assert "started from the hard-wall state" in res.message
+    assert "started from the hard-wall state" in ref.message
     agree(res, ref, 0.0)

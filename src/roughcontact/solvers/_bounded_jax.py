@@ -32,6 +32,7 @@ from . import adhesive_rules as rules
 from ._smooth_jax import _conv, _dot, accumulation_dtype, line_minimum
 from .bounded_rules import (
     BOUNDED_LINE_SEARCH_RTOL,
+    CONTACT_DOUBLINGS,
     GRADIENT_HALVINGS,
     PROJECTED_HALVINGS,
     PROJECTION_MAX_STEPS,
@@ -254,10 +255,39 @@ def run(st, k, *, law, rigid, stall, crawl=False):
         c = lax.while_loop(lambda c: ~c[3] & (c[4] < tries), body, c)
         return c[1], c[2], c[3]
 
-    def cross_the_wall(st, gap, rr, s, ks, alpha):
-        """The step crosses the wall: projected and halved, else projected gradient."""
+    def from_first_contact(w, s, alpha_max, alpha_top, e_cur):
+        """Projected steps ``w + a s``, ``a = alpha_max 2^j`` below ``alpha_top``, upward
+        until the energy rises: the lowest if it does not raise ``e_cur`` (the NumPy
+        loop's ``_projection._from_first_contact``); ``(w, K w, found)``. Only scalars
+        are carried (the state's footprint): the chosen step is formed again."""
+
+        def body(c):
+            a, a_b, e_b, found, _, j = c
+            w_try = project(w + a.astype(dt) * s, lower, pin, acc)
+            e_try = energy(w_try, exact_k(w_try))
+            rose = found & (e_try > e_b)
+            better = ~rose & (e_try <= e_cur) & (~found | (e_try <= e_b))
+            return (2.0 * a, jnp.where(better, a, a_b), jnp.where(better, e_try, e_b),
+                    found | better, rose, j + 1)  # fmt: skip
+
+        def more(c):
+            return (c[5] < CONTACT_DOUBLINGS) & (c[0] > 0) & (c[0] < alpha_top) & ~c[4]
+
+        a0 = alpha_max.astype(acc)
+        c = (a0, a0, e_cur, jnp.asarray(False), jnp.asarray(False), jnp.int32(0))
+        _, a_b, _, found, _, _ = lax.while_loop(more, body, c)
+        w_b = project(w + a_b.astype(dt) * s, lower, pin, acc)
+        return w_b, exact_k(w_b), found
+
+    def cross_the_wall(st, gap, rr, s, ks, alpha, alpha_max):
+        """The step crosses the wall: projected and halved, then upward from the first
+        wall contact (:data:`.bounded_rules.CONTACT_DOUBLINGS`), else projected gradient."""
         e_cur = energy(st.w, st.kw)
         w1, kw1, found = halve(st.w, s, alpha, e_cur, PROJECTED_HALVINGS, False)
+        top = alpha * 0.5 ** (PROJECTED_HALVINGS - 1)  # the last halving tried
+        w1, kw1, found = lax.cond(
+            found, lambda: (w1, kw1, found),
+            lambda: from_first_contact(st.w, s, alpha_max, top, e_cur))  # fmt: skip
 
         def gradient():  # the projected steepest-descent step (Bertsekas 1976)
             s_g = -rr
@@ -326,7 +356,7 @@ def run(st, k, *, law, rigid, stall, crawl=False):
             ~jnp.isfinite(alpha),
             lambda: failed,
             lambda: lax.cond(feasible, lambda: moved,
-                             lambda: cross_the_wall(st, gap, rr, s, ks, alpha)),
+                             lambda: cross_the_wall(st, gap, rr, s, ks, alpha, alpha_max)),
         )  # fmt: skip
 
     def proceed(st, residual, gap, mu, active, free, rr):

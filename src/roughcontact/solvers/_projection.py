@@ -8,7 +8,12 @@ from __future__ import annotations
 import math
 
 from .._backend import array_namespace
-from .bounded_rules import GRADIENT_HALVINGS, PROJECTION_MAX_STEPS, PROJECTION_RTOL
+from .bounded_rules import (
+    CONTACT_DOUBLINGS,
+    GRADIENT_HALVINGS,
+    PROJECTION_MAX_STEPS,
+    PROJECTION_RTOL,
+)
 from .line_search import line_minimum
 from .reductions import dot as _dot
 from .reductions import total
@@ -64,3 +69,26 @@ def _projected_gradient_step(w, kw, rr, e_cur, lower, rigid, stiff, energy, inte
             return w_try, kw_try, e_try
         alpha *= 0.5
     return None
+
+
+def _from_first_contact(w, s, alpha_max, alpha_top, e_cur, lower, rigid, stiff, energy):
+    """The lowest-energy projected step ``w + a s`` among ``a = alpha_max 2^j`` below
+    ``alpha_top`` (:data:`.bounded_rules.CONTACT_DOUBLINGS`), searched upward until the
+    energy rises, as ``(w, K w, E)`` if it does not raise the energy ``e_cur``, else None.
+
+    ``alpha_max`` is where the first site along ``s`` reaches the wall: below it the step
+    needs no projection, and the energy falls along the line up to its minimum.
+    """
+    best, alpha = None, alpha_max
+    for _ in range(CONTACT_DOUBLINGS):
+        if not 0.0 < alpha < alpha_top:
+            break
+        w_try = project_feasible(w + alpha * s, lower, rigid)
+        kw_try = stiff(w_try)
+        e_try = energy(w_try, kw_try)
+        if best is not None and e_try > best[2]:
+            break
+        if e_try <= e_cur and (best is None or e_try <= best[2]):
+            best = (w_try, kw_try, e_try)
+        alpha *= 2.0
+    return best

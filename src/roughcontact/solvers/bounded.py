@@ -19,9 +19,13 @@ and of the bounded CG of Bugnicourt et al. (Tribol. Lett. 66, 29 (2018)):
 * steps that would cross the wall are projected onto the feasible set
   :math:`\{w \ge h - d,\ \bar w = 0\}` (clip plus a uniform shift, found by a
   finite Newton iteration), as Polonsky & Keer project their pressures; a projected step
-  that does not lower the energy is halved, then replaced by a projected steepest-descent
-  step (Bertsekas, IEEE Trans. Autom. Control 21, 174 (1976)), which lowers it for a short
-  enough step: a preconditioned direction, once projected, need not descend.
+  that does not lower the energy is halved; if every halving rises, the projected path
+  is searched upward from the first wall contact along the direction (steps doubling
+  from there until the energy rises, :data:`.bounded_rules.CONTACT_DOUBLINGS`, in the
+  spirit of Moré & Toraldo's projected search); failing that, a projected
+  steepest-descent step (Bertsekas, IEEE Trans. Autom. Control 21, 174 (1976)), which
+  lowers it for a short enough step: a preconditioned direction, once projected, need
+  not descend.
 
 Under load control (``load``, NumPy, periodic, rigid mean) the multiplier is the load,
 ``μ = -N``, and the mean of ``w`` (the offset) is free, with a block in the
@@ -65,7 +69,7 @@ from .._accelerator import routed
 from .._backend import dtype_name
 from ._free_mean import FreeMean
 from ._inplace import Workspace
-from ._projection import _projected_gradient_step, project_feasible
+from ._projection import _from_first_contact, _projected_gradient_step, project_feasible
 from .bounded_rules import FULL_CONTACT_NOTE, ON_WALL, PROJECTED_HALVINGS
 from .fourier import (
     compliance_operator,
@@ -286,10 +290,13 @@ def minimize_energy_bounded(
                 break
             alpha *= 0.5
         else:
-            # the preconditioned direction mixes sites across the face, so once projected
-            # it need not descend (e.g. after an offset change lifts a whole contact off
-            # the wall); the projected gradient does, for a short enough step
-            step = _projected_gradient_step(
+            # then upward from the first wall contact (CONTACT_DOUBLINGS: why); else the
+            # preconditioned direction, which mixes sites across the face, need not
+            # descend once projected (e.g. after an offset change lifts a whole contact
+            # off the wall), and the projected gradient does, for a short enough step
+            step = _from_first_contact(
+                w, s, alpha_max, 2.0 * alpha, e_cur, lower, pin, stiff, energy
+            ) or _projected_gradient_step(
                 w, kw + work_load if work_load else kw, rr, e_cur, lower, pin, stiff, energy,
                 interaction, gap, work,
             )

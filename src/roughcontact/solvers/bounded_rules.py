@@ -10,6 +10,7 @@ from __future__ import annotations
 
 __all__ = [
     "BOUNDED_LINE_SEARCH_RTOL",
+    "CONTACT_DOUBLINGS",
     "FULL_CONTACT_NOTE",
     "GRADIENT_HALVINGS",
     "ON_WALL",
@@ -31,6 +32,21 @@ ON_WALL = 1e-12
 #: most GRADIENT_HALVINGS times until it lowers the energy (else: no descent).
 PROJECTED_HALVINGS = 6
 GRADIENT_HALVINGS = 40
+
+#: When every halving rises, the projected path is searched upward from the first wall
+#: contact along the direction, ``alpha_max`` (no site crosses the wall there, and the
+#: energy falls along the line up to its minimum): ``alpha_max 2^j`` for j = 0, 1, ...
+#: below the last halving, at most CONTACT_DOUBLINGS of them, stopping at the first rise;
+#: the lowest is taken if it does not raise the energy (then the projected gradient).
+#: Why: under cold load control the direction carries the body's lift, along which a
+#: barely touching surface meets no stiffness, and the line minimum lay 50-100 times
+#: beyond any step the wall admits (128², Exponential w 0.002, range 0.2, load 0: alpha 48
+#: against 0.5 once in contact); all six halvings rose, and the projected gradient's short
+#: steps crawled through the jump into contact (3-fold in 40 iterations: the crawl guard,
+#: then a restart from the hard wall). Measured over 72 cold load solves (128², 4 surfaces
+#: x 6 laws x 3 loads): fine-grid iterations 3592 -> 2716, restarts 9 -> 2; at 256² 7278 ->
+#: 4685 and 24 -> 8 (benchmarks/README.md).
+CONTACT_DOUBLINGS = 30
 
 #: The projection's Newton iteration for the multiplier of the mean: at most
 #: PROJECTION_MAX_STEPS steps, done when ``|sum| <= PROJECTION_RTOL (sum|lower| + sum|v|)``.

@@ -8,8 +8,11 @@ mode of the gap is free and its force is the load not carried; on the wall the m
 the load): about the cost of an offset-controlled solve (cold from 128² on started from the
 2x2-coarsened grid's state, :func:`_coarse_start`: 0.5-1.0x its iterations at 128²-256²
 for a smooth law, 0.6-1.6x for a hard core; 1.05-1.1x a warm path step; against 10-30x
-for the search below: benchmarks/README.md). A cold hard-core solve that crawls through
-the jump into contact starts again from a hard-wall state once its residual falls less
+for the search below: benchmarks/README.md). A cold hard-core solve that still crawls
+through the jump into contact (the bounded solver's search from the first wall contact,
+:data:`.bounded_rules.CONTACT_DOUBLINGS`, removed most such crawls: 24 of 72 cold solves
+at 256² restarted before it, 8 after) starts again from a hard-wall state once its
+residual falls less
 than 3-fold in 40 iterations (:func:`.loop_control.guarding_crawl`) or after
 :data:`COLD_HARD_CORE_BUDGET` iterations (:func:`_from_hard_wall`).
 Where that fails (a non-finite state, a failed line search), and for every other case, the
@@ -81,6 +84,8 @@ ONE_MINIMISATION_LOADS = 100.0
 #: or weak Maugis-Dugdale laws at loads <= 0, where the projected steps crawl through the
 #: jump (the wall's sites change every iteration, restarting the conjugate directions);
 #: from the hard-wall state 13-25 hard-wall and 1-59 adhesive iterations in every case.
+#: (Those counts predate :data:`.bounded_rules.CONTACT_DOUBLINGS`, which removed most of the
+#: crawls: 3592 -> 2716 fine-grid iterations over 72 such solves at 128², 9 -> 2 restarts.)
 COLD_HARD_CORE_BUDGET = 150
 
 
