@@ -193,3 +193,21 @@ def test_a_crawl_into_contact_is_caught_by_the_guard_and_restarts():
     assert res.status is SolveStatus.CONVERGED, res.message
     assert abs(res.load + 1e-4) <= res.tol
     assert "crawled" in res.message and "started from the hard-wall state" in res.message
+
+
+def test_a_tension_beyond_the_approachs_pull_off_is_carried_by_the_unloading_branch():
+    # the approach from first contact (the jump in at load 0, then pulled) separates at
+    # -1e-3 E*; unloading from the hard-wall state at load sigma_max carries it (the
+    # crawl's restart used to find that branch by accident, and without it the answer was
+    # "no state carries load")
+    h = rc.self_affine((128, 128), hurst=0.8, rms_slope=0.3, short_cutoff=4, seed=11)
+    law = rc.Exponential(work_of_adhesion=0.05, range=0.2)
+    res = rc.solve(h, rc.Substrate(h.shape), law, load=-1e-3)
+    assert res.status is SolveStatus.CONVERGED, res.message
+    assert abs(res.load + 1e-3) <= res.tol and res.repulsive_area > 0
+    assert "separated beyond its pull-off force" in res.message and "hysteresis" in res.message
+    # where neither branch holds the tension, the detachment says that both were tried
+    h = rc.self_affine((64, 64), hurst=0.8, rms_slope=0.3, short_cutoff=4, seed=11)
+    law = rc.MaugisDugdale(work_of_adhesion=0.01, range=0.5)
+    off = rc.solve(h, rc.Substrate(h.shape), law, load=-1e-3)
+    assert off.status is SolveStatus.DETACHED and "nor did the state unloaded" in off.message

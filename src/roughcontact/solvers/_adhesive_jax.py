@@ -215,7 +215,7 @@ def minimize_energy_bounded_jax(
 def _detached(load, it, min_gap):
     """A lost tensile load's message, :meth:`._free_mean.FreeMean._lost`'s words."""
     return (
-        f"no state carries load {float(load):g}: at iteration {it} the surfaces separate "
+        f"no state reached carries load {float(load):g}: at iteration {it} the surfaces separate "
         f"(smallest gap {float(min_gap):.3g}, beyond the attraction's peak, where no site "
         "pulls that hard): beyond the pull-off force"
     )

@@ -153,7 +153,7 @@ class FreeMean:
         if not rules.tension_lost(self.law, self.load, min_gap, self.peak):
             return False
         self.detached = (
-            f"no state carries load {self.load:g}: at iteration {it} the surfaces separate "
+            f"no state reached carries load {self.load:g}: at iteration {it} the surfaces separate "
             f"(smallest gap {min_gap:.3g}, beyond the attraction's peak, where no site pulls "
             "that hard): beyond the pull-off force"
         )

@@ -14,7 +14,10 @@ through the jump into contact (the bounded solver's search from the first wall c
 at 256² restarted before it, 8 after) starts again from a hard-wall state once its
 residual falls less
 than 3-fold in 40 iterations (:func:`.loop_control.guarding_crawl`) or after
-:data:`COLD_HARD_CORE_BUDGET` iterations (:func:`_from_hard_wall`).
+:data:`COLD_HARD_CORE_BUDGET` iterations (:func:`_from_hard_wall`). A cold tensile load
+is approached from the state at load 0; for a hard core, where that approach separates
+beyond its pull-off force, the unloading branch from the hard-wall state is tried too
+(its state can hold more contact and more tension; the message says which branch).
 Where that fails (a non-finite state, a failed line search), and for every other case, the
 root search over nested solves below.
 
@@ -89,25 +92,36 @@ ONE_MINIMISATION_LOADS = 100.0
 COLD_HARD_CORE_BUDGET = 150
 
 
-def _from_hard_wall(run, heights, substrate, interaction, load, max_iter, total):
+#: Why :func:`_from_hard_wall` started again, as its message says it.
+CRAWLED = (
+    f"the solve from first contact crawled (its residual fell less than "
+    f"{1 / CRAWL_IMPROVEMENT:.0f}-fold in {CRAWL_PATIENCE} iterations, or "
+    f"{COLD_HARD_CORE_BUDGET} passed: a slow jump into contact)"
+)
+SEPARATED = (
+    "the approach from first contact (the jump into contact at load 0, then pulled to "
+    "this load) separated beyond its pull-off force"
+)
+
+
+def _from_hard_wall(run, heights, substrate, interaction, load, max_iter, total, why=CRAWLED):
     """The load-controlled solve again, from the hard-wall state at load
     ``max(load, 0) + sigma_max`` (the law's largest attraction, pressure): its offset and
     deflection, contacts already formed. ``(result, what the message adds)``.
 
     That start lies deeper in contact than the adhesive state, which the solve reaches by
     unloading: on the unloading branch, which can hold more contact at the same load than
-    the approach from first contact (adhesion hysteresis); the message says so.
+    the approach from first contact (adhesion hysteresis), and so carry a tension beyond
+    the approach's pull-off force; the message says so, and ``why`` it started again.
     """
     target = max(load, 0.0) + largest_attraction(interaction)
     hard = polonsky_keer(heights, substrate, load=target)  # (its default tol: the dtype's)
     total["it"] += hard.iterations
     res = run(load, float(hard.offset), hard, max(max_iter - hard.iterations, 1))
     return res, (
-        f"; started from the hard-wall state at load {target:.3g} E* after the solve from "
-        f"first contact crawled (its residual fell less than {1 / CRAWL_IMPROVEMENT:.0f}-fold "
-        f"in {CRAWL_PATIENCE} iterations, or {COLD_HARD_CORE_BUDGET} passed: a slow jump "
-        "into contact): the state reached by unloading from it, which can hold more "
-        "contact than an approach to this load (adhesion hysteresis)"
+        f"; started from the hard-wall state at load {target:.3g} E* after {why}: the state "
+        "reached by unloading from it, which can hold more contact than an approach to "
+        "this load (adhesion hysteresis)"
     )
 
 
@@ -278,6 +292,20 @@ def solve_at_load(
             first = cold(0.0)
             if first.converged:
                 res = run(load, first.offset, first)
+            if res.status is SolveStatus.DETACHED and budget and not restarted:
+                # beyond the approach's pull-off, a hard core's unloading branch (from
+                # full contact) can still carry the tension: said if it does, else the
+                # approach's detachment stands and its message says both
+                unloaded, note = _from_hard_wall(
+                    run, heights, substrate, interaction, load, max_iter, total, SEPARATED)
+                if unloaded.converged:
+                    res = unloaded
+                    restarted.append(note)
+                else:
+                    res = dataclasses.replace(res, message=res.message + (
+                        "; nor did the state unloaded from the hard-wall state at load "
+                        f"{max(load, 0.0) + largest_attraction(interaction):.3g} E* carry it "
+                        "(no branch tried holds this tension)"))  # fmt: skip
         if res.converged and abs(res.load - load) <= load_tol:
             full = interaction.hard_core and res.repulsive_area >= 1.0
             return finish(res, True, "converged (load control)" + (
