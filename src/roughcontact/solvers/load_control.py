@@ -293,9 +293,9 @@ def solve_at_load(
             if first.converged:
                 res = run(load, first.offset, first)
             if res.status is SolveStatus.DETACHED and budget and not restarted:
-                # beyond the approach's pull-off, a hard core's unloading branch (from
-                # full contact) can still carry the tension: said if it does, else the
-                # approach's detachment stands and its message says both
+                # beyond the approach's pull-off, a hard core's unloading branch (from the
+                # hard-wall state, deeper in contact) can still carry the tension: said if
+                # it does, else the approach's detachment stands and its message says both
                 unloaded, note = _from_hard_wall(
                     run, heights, substrate, interaction, load, max_iter, total, SEPARATED)
                 if unloaded.converged:
