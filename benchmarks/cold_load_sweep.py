@@ -6,17 +6,20 @@ offset ``d`` that the load solve reached. Printed per case: the load solve's ite
 the fine grid (``result.iterations``; its nested start's coarse grid is not counted, as for
 the hard wall), whether it started again from a hard-wall state (its message says so),
 the offset-controlled solve's iterations, the ratio (load / offset-controlled, the
-latter at least 1), both statuses and the largest gap difference between the two states
-(a large one: another equilibrium at the same offset). The summary per size: the
-iterations in all, the restarts, and over the cases where both converged the median and
-largest ratio and how many exceed issue 39's 2×.
+latter at least 1), the state the offset-controlled solve ends in (``same``: within
+:data:`SAME_STATE` of the load solve's gap; ``full``: full contact at offset mean(h), where
+it takes 0-1 iterations; ``other``: another equilibrium at that offset) with the largest gap
+difference, and for a restarted solve the offset-controlled solve from the same hard-wall
+state (hard-wall + adhesive iterations, and whether it ends in the load solve's state).
+The summary per size: the iterations in all, the restarts, and over the cases where both
+converged the median and largest ratio and the cases above issue 39's 2× by state.
 
 The surfaces: ``self_affine((n, n), hurst=H, rms_slope=s, short_cutoff=4, seed=k)`` with
 (H, s, k) = (0.8, 0.1, 7), (0.5, 0.2, 3), (0.3, 0.05, 4), (0.8, 0.3, 11). The laws:
 Maugis–Dugdale and hard-core Exponential with (work of adhesion / E* a0, range / a0) =
 (0.01, 0.5), (0.002, 0.2), (0.05, 1.0) and (0.01, 0.5), (0.002, 0.2), (0.05, 0.2). E* = a0 = 1.
 
-    python benchmarks/cold_load_sweep.py --sizes 128 256          # 144 cold solves, ~10 min
+    python benchmarks/cold_load_sweep.py --sizes 128 256          # 144 cold solves, ~1 min
     python benchmarks/cold_load_sweep.py --sizes 128 --laws exp --json sweep.json
 
 Iteration counts are the figures (the machine may be shared); seconds are printed beside
