@@ -46,7 +46,6 @@ LAWS = (
     ("exp", 0.002, 0.2),
     ("exp", 0.05, 0.2),
 )
-RESTART_NOTE = "started from the hard-wall state"
 #: Largest gap difference (a0) of two states called the same.
 SAME_STATE = 1e-6
 
@@ -64,7 +63,7 @@ def one_case(h, substrate, law, load: float, tol: float, max_iter: int) -> dict:
     and, where the load solve started again from a hard-wall state, from that same state
     (the offset-controlled solve that can end in the same state: the unloading branch)."""
     import roughcontact as rc
-    from roughcontact.solvers.adhesive_rules import largest_attraction
+    from roughcontact.solvers.load_control import RESTARTED, hard_wall_start_load
 
     t0 = time.perf_counter()
     by_load = rc.solve(h, substrate, law, load=load, tol=tol, max_iter=max_iter)
@@ -72,7 +71,7 @@ def one_case(h, substrate, law, load: float, tol: float, max_iter: int) -> dict:
     row = {
         "load_status": by_load.status.value,
         "load_iterations": by_load.iterations,
-        "restarted": RESTART_NOTE in by_load.message,
+        "restarted": RESTARTED in by_load.message,
         "load_seconds": t1 - t0,
         "offset": by_load.offset,
         "load_reached": by_load.load,
@@ -94,7 +93,7 @@ def one_case(h, substrate, law, load: float, tol: float, max_iter: int) -> dict:
         offset_repulsive_area=by_offset.repulsive_area,
     )
     if row["restarted"]:
-        start = rc.polonsky_keer(h, substrate, load=max(load, 0.0) + largest_attraction(law))
+        start = rc.polonsky_keer(h, substrate, load=hard_wall_start_load(load, law))
         again = rc.solve(h, substrate, law, offset=by_load.offset, initial=start, tol=tol,
                          max_iter=max_iter)  # fmt: skip
         row.update(

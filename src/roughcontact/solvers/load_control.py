@@ -104,6 +104,19 @@ SEPARATED = (
 )
 
 
+#: What a load-controlled solve's message says when it started again from a hard-wall state
+#: (:func:`_from_hard_wall`).
+RESTARTED = "started from the hard-wall state"
+
+
+def hard_wall_start_load(load: float, interaction) -> float:
+    """Mean pressure (E* units) of the hard-wall state a hard-core load-controlled solve
+    starts again from: ``max(load, 0) + sigma_max``, the law's largest attraction
+    (:func:`.adhesive_rules.largest_attraction`) above the load, so the contacts are formed
+    deeper than the adhesive state's and the solve reaches it by unloading."""
+    return max(load, 0.0) + largest_attraction(interaction)
+
+
 def _from_hard_wall(run, heights, substrate, interaction, load, max_iter, total, why=CRAWLED):
     """The load-controlled solve again, from the hard-wall state at load
     ``max(load, 0) + sigma_max`` (the law's largest attraction, pressure): its offset and
@@ -114,12 +127,12 @@ def _from_hard_wall(run, heights, substrate, interaction, load, max_iter, total,
     the approach from first contact (adhesion hysteresis), and so carry a tension beyond
     the approach's pull-off force; the message says so, and ``why`` it started again.
     """
-    target = max(load, 0.0) + largest_attraction(interaction)
+    target = hard_wall_start_load(load, interaction)
     hard = polonsky_keer(heights, substrate, load=target)  # (its default tol: the dtype's)
     total["it"] += hard.iterations
     res = run(load, float(hard.offset), hard, max(max_iter - hard.iterations, 1))
     return res, (
-        f"; started from the hard-wall state at load {target:.3g} E* after {why}: the state "
+        f"; {RESTARTED} at load {target:.3g} E* after {why}: the state "
         "reached by unloading from it, which can hold more contact than an approach to "
         "this load (adhesion hysteresis)"
     )
@@ -304,7 +317,7 @@ def solve_at_load(
                 else:
                     res = dataclasses.replace(res, message=res.message + (
                         "; nor did the state unloaded from the hard-wall state at load "
-                        f"{max(load, 0.0) + largest_attraction(interaction):.3g} E* carry it "
+                        f"{hard_wall_start_load(load, interaction):.3g} E* carry it "
                         "(no branch tried holds this tension)"))  # fmt: skip
         if res.converged and abs(res.load - load) <= load_tol:
             full = interaction.hard_core and res.repulsive_area >= 1.0
